@@ -1,0 +1,20 @@
+#!/usr/bin/env bash
+# Install rollaway and everything it needs on a fresh Debian machine (root, no GPU).
+# System libraries: Mesa EGL/OSMesa for off-screen MuJoCo rendering.
+set -euo pipefail
+cd "$(dirname "$0")/.."
+need=()
+for pkg in libegl1 libegl-mesa0 libgl1-mesa-dri libosmesa6; do
+  dpkg -s "$pkg" >/dev/null 2>&1 || need+=("$pkg")
+done
+if [ ${#need[@]} -gt 0 ]; then
+  if [ "$(id -u)" = 0 ]; then
+    echo "[install] apt-get install ${need[*]}"
+    apt-get update -qq && DEBIAN_FRONTEND=noninteractive apt-get install -y -qq "${need[@]}" >/dev/null
+  else
+    echo "[install] missing system packages ${need[*]}: run 'sudo apt-get install -y ${need[*]}'" >&2
+  fi
+fi
+echo "[install] pip install -e .[test]"
+python -m pip install -q --disable-pip-version-check --root-user-action=ignore -e '.[test]'
+echo "[install] done: $(python -c 'import mujoco, rollaway; print("mujoco", mujoco.__version__, "rollaway", rollaway.__version__)')"

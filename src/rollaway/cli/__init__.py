@@ -1,0 +1,62 @@
+"""Command-line entry point: ``rollaway COMMAND ...``.
+
+Every command lives in its own module ``rollaway.cli.<name>`` with a ``register(app)``
+function.  User mistakes (:class:`rollaway.errors.UserError`, click usage errors) print
+one line on stderr and exit with code 2; no traceback.
+"""
+from __future__ import annotations
+
+import importlib
+import importlib.util
+import sys
+
+import typer
+
+from rollaway.cli.app import app
+from rollaway.errors import UserError
+
+try:  # typer >= 0.22 carries its own copy of click
+    from typer._click.exceptions import NoArgsIsHelpError, UsageError
+except ImportError:  # pragma: no cover - older typer on real click
+    from click.exceptions import NoArgsIsHelpError, UsageError
+
+COMMANDS = ("brake", "check", "params", "paper", "simulate", "sweep", "compare", "diagnose", "fit", "synth")
+
+for _name in COMMANDS:
+    # a command module that is not in this checkout yet is simply not offered
+    if importlib.util.find_spec(f"rollaway.cli.{_name}") is not None:
+        importlib.import_module(f"rollaway.cli.{_name}").register(app)
+
+
+def _command_path(args: list[str]) -> str:
+    sub = next((a for a in args if not a.startswith("-")), "")
+    return f"rollaway {sub}".strip()
+
+
+def main(argv: list[str] | None = None) -> int:
+    args = list(sys.argv[1:] if argv is None else argv)
+    command = typer.main.get_command(app)
+    try:
+        rv = command.main(args=args, prog_name="rollaway", standalone_mode=False)
+    except NoArgsIsHelpError as exc:  # bare 'rollaway': show help, usage error
+        print(exc.ctx.get_help() if exc.ctx else str(exc))
+        return 2
+    except UsageError as exc:
+        path = exc.ctx.command_path if exc.ctx else _command_path(args)
+        print(f"{path}: error: {exc.format_message()} (see '{path} --help')", file=sys.stderr)
+        return 2
+    except UserError as exc:
+        print(f"{_command_path(args)}: error: {exc}", file=sys.stderr)
+        return 2
+    except (typer.Abort, KeyboardInterrupt):
+        print("interrupted", file=sys.stderr)
+        return 130
+    except BrokenPipeError:
+        return 0
+    if isinstance(rv, int):
+        return rv
+    return 0
+
+
+def run() -> None:  # pragma: no cover - console script shim
+    sys.exit(main())

@@ -1,0 +1,61 @@
+"""``rollaway brake``: time series of one drum of the paper's model."""
+from __future__ import annotations
+
+from typing import Optional
+
+import numpy as np
+import typer
+
+from rollaway.brake import drum_brake
+from rollaway.cli.output import FORMATS, write_table
+from rollaway.errors import UserError, check_choice
+from rollaway.hold import validate_hand_force
+from rollaway.parameters import _validate_value, load_parameters
+from rollaway.physics.drum import DIRECTIONS
+
+
+def time_grid_s(t_end_s: float, dt_s: float) -> np.ndarray:
+    if not np.isfinite(t_end_s) or t_end_s < 0:
+        raise UserError(f"--t-end-s {t_end_s:g} must be ≥ 0 seconds, e.g. 3600 for one hour")
+    if not np.isfinite(dt_s) or dt_s <= 0:
+        raise UserError(f"--dt-s {dt_s:g} must be > 0 seconds, e.g. 600")
+    n = int(np.floor(t_end_s / dt_s + 1e-9))
+    if n > 10_000_000:
+        raise UserError(f"--t-end-s/--dt-s gives {n} rows; use a larger --dt-s")
+    return np.arange(n + 1) * dt_s
+
+
+def brake(
+    hand_force_N: float = typer.Option(..., "--hand-force-N", help="force on the hand lever [N], e.g. 250"),
+    direction: str = typer.Option("downhill", "--direction", help="vehicle facing 'downhill' or 'uphill'"),
+    t_end_s: float = typer.Option(3600.0, "--t-end-s", help="end of the series [s]"),
+    dt_s: float = typer.Option(600.0, "--dt-s", help="time step of the printed series [s]"),
+    mu: Optional[float] = typer.Option(None, "--mu", help="shoe/drum friction μ_d [–] (default: the set's, 0.4)"),
+    gap_mm: Optional[float] = typer.Option(None, "--gap-mm", help="installation gap [mm]; > 0 selects eq. 16b"),
+    t0_C: Optional[float] = typer.Option(None, "--t0-C", help="drum temperature when the lever is applied [°C]"),
+    params: Optional[str] = typer.Option(None, "--params", help="parameter set name or TOML file (default: paper)"),
+    fmt: str = typer.Option("table", "--format", help="csv | json | table"),
+) -> None:
+    """Print the drum temperature, normal force and torque of ONE drum over time (paper eqs. 10, 16, 17b, 24)."""
+    check_choice(fmt, FORMATS, "format")
+    check_choice(direction, DIRECTIONS, "direction")
+    validate_hand_force(hand_force_N)
+    p = load_parameters(params)
+    changes = {}
+    if mu is not None:
+        changes["mu_drum"] = _validate_value("mu_drum", mu, "--mu")
+    if gap_mm is not None:
+        changes["gap_m"] = _validate_value("gap_m", gap_mm / 1000.0, "--gap-mm (in mm)")
+    if t0_C is not None:
+        changes["initial_drum_temp_C"] = _validate_value("initial_drum_temp_C", t0_C, "--t0-C")
+    p = p.replace(**changes) if changes else p
+    t = time_grid_s(t_end_s, dt_s)
+    series = drum_brake(p, time_s=t, hand_force_N=hand_force_N, direction=direction)
+    if bool(np.any(series.self_locked)):
+        raise UserError(f"the shoe self-locks facing {direction} with μ_d = {p.mu_drum:g} "
+                        f"(l_f − μ_d·l_fr ≤ 0, eqs. 18–21): the 1D model has no finite torque; lower --mu")
+    write_table(series.columns(), fmt)
+
+
+def register(app: typer.Typer) -> None:
+    app.command("brake")(brake)

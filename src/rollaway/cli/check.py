@@ -1,0 +1,72 @@
+"""``rollaway check``: regulation hold checks (analytic here; MuJoCo gate in :mod:`rollaway.compliance`)."""
+from __future__ import annotations
+
+from typing import List, Optional
+
+import numpy as np
+import typer
+
+from rollaway.cli.output import FORMATS, write_table
+from rollaway.errors import check_choice
+from rollaway.hold import analytic_verdict, minimum_hand_force_N
+from rollaway.parameters import load_parameters
+from rollaway.regulations import PRESETS, get_preset
+
+DEFAULT_PRESETS = ("fmvss135", "unr13h")
+
+
+def analytic_rows(preset_names, params) -> dict[str, list]:
+    cols: dict[str, list] = {k: [] for k in (
+        "preset", "direction", "grade_pct", "occupants", "hand_force_N", "duration_s", "min_brake_margin",
+        "tyre_margin", "min_hand_force_N", "verdict", "reason")}
+    for name in preset_names:
+        pr = get_preset(name)
+        for d in pr.directions:
+            v = analytic_verdict(params, hand_force_N=pr.hand_force_N, grade_pct=pr.grade_pct, direction=d,
+                                 occupants=pr.occupants, duration_s=pr.duration_s, initial_temp_C=pr.initial_temp_C)
+            fmin = float(minimum_hand_force_N(params, pr.grade_pct, d, pr.occupants, pr.duration_s,
+                                              initial_temp_C=pr.initial_temp_C))
+            for k, val in (("preset", name), ("direction", d), ("grade_pct", pr.grade_pct),
+                           ("occupants", pr.occupants), ("hand_force_N", pr.hand_force_N),
+                           ("duration_s", pr.duration_s), ("min_brake_margin", v.brake_margin_min),
+                           ("tyre_margin", v.tyre_margin), ("min_hand_force_N", fmin),
+                           ("verdict", "PASS" if v.holds else "FAIL"), ("reason", v.reason)):
+                cols[k].append(val)
+    return cols
+
+
+def check(
+    targets: Optional[List[str]] = typer.Argument(
+        None, help="with --analytic: preset names (fmvss135, unr13h, paper30, or 'all'); default: fmvss135 unr13h"),
+    analytic: bool = typer.Option(False, "--analytic", help="use the paper's analytic check (no simulation)"),
+    params: Optional[str] = typer.Option(None, "--params", help="parameter set name or TOML file (default: paper)"),
+    fmt: str = typer.Option("table", "--format", help="csv | json | table"),
+) -> int:
+    """Regulation hold checks; exit 0 when every case holds, 1 when any fails.
+
+    Presets: fmvss135 (FMVSS 135 S7.12), unr13h (UN R13-H), paper30 (the paper's 30 % case).
+    """
+    check_choice(fmt, FORMATS, "format")
+    p = load_parameters(params)
+    names = list(targets or DEFAULT_PRESETS)
+    if names == ["all"]:
+        names = list(PRESETS)
+    for n in names:
+        get_preset(n)
+    if not analytic:
+        from rollaway.compliance import simulated_check  # MuJoCo gate (issue 4)
+        return simulated_check(names, p, fmt)
+    cols = analytic_rows(names, p)
+    write_table(cols, fmt, precision=4)
+    if fmt == "table":
+        for n in names:
+            typer.echo(f"  {n}: {get_preset(n).source}")
+    failed = int(np.sum(np.array(cols["verdict"]) == "FAIL"))
+    if fmt == "table":
+        typer.echo(f"{len(cols['verdict']) - failed} passed, {failed} failed" if failed else
+                   f"all {len(cols['verdict'])} cases hold")
+    return 1 if failed else 0
+
+
+def register(app: typer.Typer) -> None:
+    app.command("check")(check)

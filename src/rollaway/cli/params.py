@@ -1,0 +1,30 @@
+"""``rollaway params``: list a parameter set with units, sources and what is assumed."""
+from __future__ import annotations
+
+from typing import Optional
+
+import typer
+
+from rollaway.cli.output import write_table
+from rollaway.parameters import SPEC_BY_NAME, load_parameters
+
+
+def params(
+    source: Optional[str] = typer.Argument(None, help="set name (paper) or TOML file"),
+    fmt: str = typer.Option("table", "--format", help="csv | json | table"),
+) -> None:
+    """List every parameter of a set: value, unit, source; 'assumed' marks values not in the paper's Table 1."""
+    p = load_parameters(source)
+    d = p.as_dict()
+    write_table({
+        "name": list(d),
+        "symbol": [SPEC_BY_NAME[k].symbol for k in d],
+        "value": [float(v) for v in d.values()],
+        "unit": [SPEC_BY_NAME[k].unit for k in d],
+        "assumed": ["yes" if SPEC_BY_NAME[k].assumed else "" for k in d],
+        "source": [SPEC_BY_NAME[k].source for k in d],
+    }, fmt)
+
+
+def register(app: typer.Typer) -> None:
+    app.command("params")(params)

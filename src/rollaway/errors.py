@@ -1,0 +1,33 @@
+"""User-facing errors.
+
+Every mistake a user can make (a bad number, an unknown name, a malformed file)
+raises :class:`UserError`.  The CLI turns it into a one-line message on stderr and
+exit code 2, never a traceback.  Messages say *what* is wrong, *where* (file, line,
+key) and *how to fix it*.
+"""
+from __future__ import annotations
+
+import difflib
+from collections.abc import Iterable
+
+
+class UserError(ValueError):
+    """A mistake in the user's input; the message names the value and the fix."""
+
+    exit_code = 2
+
+
+def suggest(name: str, choices: Iterable[str]) -> str:
+    """Return ``" (did you mean 'x'?)"`` for the closest of *choices*, or ``""``."""
+    close = difflib.get_close_matches(str(name), list(choices), n=1, cutoff=0.5)
+    return f" (did you mean '{close[0]}'?)" if close else ""
+
+
+def check_choice(value: str, choices: Iterable[str], what: str) -> str:
+    """Validate *value* against *choices*; raise :class:`UserError` with a hint."""
+    choices = list(choices)
+    if value in choices:
+        return value
+    raise UserError(
+        f"unknown {what} '{value}'{suggest(value, choices)}; choose one of: {', '.join(choices)}"
+    )

@@ -1,0 +1,202 @@
+"""Analytic hold check: will the parked car stay put? (MODEL.md item 9)
+
+Two conditions, both from a static balance:
+
+* **brake**: hold margin ``2·T_gen(t) / T_req`` ≥ 1 (paper eqs. 17b and 23; the hand lever
+  drives both rear drums through an equaliser, eq. 24 is per drum);
+* **tyres**: adhesion margin ``μ_r·N_r / (m g sin θ)`` ≥ 1 (eq. 22 with the rear-axle load
+  N_r from the slope balance in :func:`rollaway.physics.vehicle.rear_axle_load_N`).
+  The paper checks only the first.
+
+Grades are signed: a negative grade flips the direction the car faces relative to
+the fall line (a car "facing downhill" on −20 % faces uphill on 20 %).
+Everything is vectorised; closed forms replace scans (the baseline is affine in
+u_6 and ΔT, and ΔT(t) is monotone).
+"""
+from __future__ import annotations
+
+from dataclasses import dataclass
+
+import numpy as np
+from numpy.typing import ArrayLike
+
+from rollaway.brake import drum_brake, drum_temperature, shoe_factor, unenergised_force
+from rollaway.errors import UserError
+from rollaway.parameters import BrakeParameters, paper
+from rollaway.physics import drum as drum_phys
+from rollaway.physics import vehicle
+
+MAX_OCCUPANTS = 5
+
+
+def validate_grade(grade_pct: ArrayLike) -> np.ndarray:
+    g = np.asarray(grade_pct, float)
+    bad = ~np.isfinite(g) | (g <= -100.0) | (g > 100.0)
+    if np.any(bad):
+        raise UserError(f"grade {np.atleast_1d(g)[np.atleast_1d(bad)][0]:g} % is outside (−100 %, 100 %]; "
+                        f"give the slope in percent rise over run, e.g. 20 for a 20 % grade")
+    return g
+
+
+def validate_occupants(occupants: ArrayLike) -> np.ndarray:
+    n = np.asarray(occupants, float)
+    bad = ~np.isfinite(n) | (n < 0) | (n > MAX_OCCUPANTS) | (n != np.round(n))
+    if np.any(bad):
+        raise UserError(f"occupants = {np.atleast_1d(n)[np.atleast_1d(bad)][0]:g} is not a whole number "
+                        f"from 0 to {MAX_OCCUPANTS}; give the number of 70 kg occupants")
+    return n
+
+
+def validate_hand_force(hand_force_N: ArrayLike) -> np.ndarray:
+    f = np.asarray(hand_force_N, float)
+    bad = ~np.isfinite(f) | (f < 0)
+    if np.any(bad):
+        raise UserError(f"hand force {np.atleast_1d(f)[np.atleast_1d(bad)][0]:g} N is negative or not finite; "
+                        f"give the lever force in newtons, e.g. 400")
+    return f
+
+
+def _effective(grade_pct, direction):
+    g = validate_grade(grade_pct)
+    sign = drum_phys.direction_sign(direction) * np.where(g < 0, -1.0, 1.0)
+    return np.abs(g), sign
+
+
+def _direction_of(sign):
+    return np.where(np.asarray(sign) > 0, "downhill", "uphill")
+
+
+def total_mass_kg(params: BrakeParameters, occupants: ArrayLike = 1) -> np.ndarray:
+    return vehicle.vehicle_mass_kg(params.vehicle_mass_kg, validate_occupants(occupants), params.occupant_mass_kg)
+
+
+def required_torque(params: BrakeParameters, grade_pct: ArrayLike, occupants: ArrayLike = 1) -> np.ndarray:
+    """T_req at the rear axle, eq. (23) [N·m] (|grade| used)."""
+    g = np.abs(validate_grade(grade_pct))
+    return vehicle.required_torque_Nm(total_mass_kg(params, occupants), g, params.wheel_radius_m,
+                                      params.gravity_m_s2)
+
+
+def tyre_adhesion_margin(params: BrakeParameters, grade_pct: ArrayLike, direction="downhill",
+                         occupants: ArrayLike = 1, tyre_road_mu: ArrayLike | None = None) -> np.ndarray:
+    """μ_r·N_r / (m g sin θ): ≥ 1 when the rear tyres can carry the slope force (inf on the flat)."""
+    g, sign = _effective(grade_pct, direction)
+    n = validate_occupants(occupants)
+    m = total_mass_kg(params, n)
+    x, z = vehicle.centre_of_gravity_m(
+        n, vehicle_mass_kg_=params.vehicle_mass_kg, occupant_mass_kg=params.occupant_mass_kg,
+        cg_behind_front_m=params.cg_behind_front_m, cg_height_m=params.cg_height_m,
+        front_seat_behind_front_m=params.front_seat_behind_front_m,
+        rear_seat_behind_front_m=params.rear_seat_behind_front_m, seat_height_m=params.seat_height_m)
+    n_r = vehicle.rear_axle_load_N(m, g, sign, wheelbase_m=params.wheelbase_m, cg_behind_front_m=x,
+                                   cg_height_m=z, gravity_m_s2=params.gravity_m_s2)
+    mu_r = params.tyre_road_mu if tyre_road_mu is None else np.asarray(tyre_road_mu, float)
+    demand = vehicle.slope_force_N(m, g, params.gravity_m_s2)
+    with np.errstate(divide="ignore", invalid="ignore"):
+        return np.where(demand > 0, mu_r * n_r / np.where(demand > 0, demand, 1.0), np.inf)
+
+
+def hold_margin(params: BrakeParameters, time_s: ArrayLike, hand_force_N: ArrayLike, grade_pct: ArrayLike,
+                direction="downhill", occupants: ArrayLike = 1, mu_drum=None, gap_m=None,
+                initial_temp_C=None) -> np.ndarray:
+    """Brake hold margin 2·T_gen(t)/T_req over time (inf on the flat or for a self-locked shoe)."""
+    g, sign = _effective(grade_pct, direction)
+    series = drum_brake(params, time_s=time_s, hand_force_N=validate_hand_force(hand_force_N),
+                        direction=_direction_of(sign), mu_drum=mu_drum, gap_m=gap_m, initial_temp_C=initial_temp_C)
+    t_req = required_torque(params, g, occupants)
+    with np.errstate(divide="ignore", invalid="ignore"):
+        return np.where(t_req > 0, 2.0 * series.torque_Nm / np.where(t_req > 0, t_req, 1.0), np.inf)
+
+
+def _force_coefficients(params, gap_m):
+    """F_l0 = k_u·u_6 + k_T·ΔT (eq. 16 is affine in u_6 and ΔT): return (k_u, k_T)."""
+    f00 = unenergised_force(params, 0.0, 0.0, gap_m)
+    k_u = unenergised_force(params, 1.0, 0.0, gap_m) - f00
+    k_t = unenergised_force(params, 0.0, 1.0, gap_m) - f00
+    return k_u, k_t
+
+
+def time_to_slip_s(params: BrakeParameters, hand_force_N: ArrayLike, grade_pct: ArrayLike, direction="downhill",
+                   occupants: ArrayLike = 1, mu_drum=None, gap_m=None, initial_temp_C=None,
+                   horizon_s: float = np.inf) -> np.ndarray:
+    """Time at which the brake hold margin first falls below 1 [s].
+
+    0 if it never held, NaN if it holds up to *horizon_s* (and for ever if the drum
+    cools towards a holding state).  Solved in closed form: eq. (16) is affine in ΔT,
+    eq. (10) inverts to t = −τ ln((T* − T_amb)/(T_0 − T_amb)).
+    """
+    g, sign = _effective(grade_pct, direction)
+    f = validate_hand_force(hand_force_N)
+    mu = params.mu_drum if mu_drum is None else np.asarray(mu_drum, float)
+    t0 = params.initial_drum_temp_C if initial_temp_C is None else np.asarray(initial_temp_C, float)
+    k_u, k_t = _force_coefficients(params, gap_m)
+    u6 = drum_phys.lining_displacement_m(f, params.u6_slope_m_per_N, params.u6_offset_m)
+    factor = shoe_factor(params, _direction_of(sign), mu)
+    t_req = required_torque(params, g, occupants)
+    with np.errstate(divide="ignore", invalid="ignore"):
+        f_need = t_req / (2.0 * mu * params.drum_radius_m * factor)          # F_l0 needed (0 if locked)
+        dT_star = (f_need - k_u * u6) / k_t                                    # ΔT at which F_l0 = f_need
+        ratio = (t0 + dT_star - params.ambient_temp_C) / (t0 - params.ambient_temp_C)
+        tau = params.cooling_time_constant_s
+        t_cross = np.where((ratio > 0) & (ratio <= 1), -tau * np.log(np.where(ratio > 0, ratio, 1.0)), np.nan)
+    m0 = hold_margin(params, 0.0, f, g, _direction_of(sign), occupants, mu, gap_m, t0)
+    # while cooling from above ambient ΔT falls; the margin falls if k_t > 0
+    falling = (k_t > 0) == (np.asarray(t0) > params.ambient_temp_C)
+    out = np.where(m0 < 1.0, 0.0, np.where(falling, t_cross, np.nan))
+    out = np.where(out > horizon_s, np.nan, out)
+    return np.asarray(out, float)
+
+
+def minimum_hand_force_N(params: BrakeParameters, grade_pct: ArrayLike, direction="downhill",
+                         occupants: ArrayLike = 1, duration_s: ArrayLike = 300.0, mu_drum=None, gap_m=None,
+                         initial_temp_C=None) -> np.ndarray:
+    """Least hand force whose brake margin stays ≥ 1 over [0, duration_s] [N].
+
+    Solved, not scanned: F_l0 is affine in u_6 (eq. 16), u_6 affine in F_hb (eq. 24),
+    ΔT(t) monotone (eq. 10), so the worst instant is t = 0 or t = duration.  The tyre
+    condition does not depend on hand force; check it with :func:`tyre_adhesion_margin`.
+    Returns 0 if no force is needed, ``inf`` if no force can hold (μ_d = 0).
+    """
+    g, sign = _effective(grade_pct, direction)
+    mu = params.mu_drum if mu_drum is None else np.asarray(mu_drum, float)
+    t0 = params.initial_drum_temp_C if initial_temp_C is None else np.asarray(initial_temp_C, float)
+    k_u, k_t = _force_coefficients(params, gap_m)
+    factor = shoe_factor(params, _direction_of(sign), mu)
+    t_req = required_torque(params, g, occupants)
+    dT_end = drum_temperature(params, duration_s, t0) - t0
+    worst = np.minimum(0.0, k_t * dT_end)                 # most negative thermal term over the hold
+    with np.errstate(divide="ignore", invalid="ignore"):
+        f_need = np.where(mu > 0, t_req / (2.0 * np.where(mu > 0, mu, 1.0) * params.drum_radius_m * factor), np.inf)
+        u6_need = (f_need - worst) / k_u
+        force = (u6_need - params.u6_offset_m) / params.u6_slope_m_per_N
+    force = np.where(t_req <= 0, 0.0, force)
+    return np.maximum(force, 0.0)
+
+
+@dataclass(frozen=True)
+class HoldVerdict:
+    """Outcome of the analytic check for one case."""
+
+    brake_margin_min: float
+    tyre_margin: float
+    time_to_slip_s: float     # NaN if the brake holds for the whole duration
+    holds: bool
+    reason: str
+
+
+def analytic_verdict(params: BrakeParameters, *, hand_force_N: float, grade_pct: float, direction: str,
+                     occupants: int, duration_s: float, initial_temp_C: float | None = None,
+                     mu_drum: float | None = None, n_samples: int = 721) -> HoldVerdict:
+    """Check one case over [0, duration_s]: brake margin (sampled and solved) and tyre margin."""
+    t = np.linspace(0.0, duration_s, n_samples)
+    m = hold_margin(params, t, hand_force_N, grade_pct, direction, occupants, mu_drum, None, initial_temp_C)
+    t_slip = float(time_to_slip_s(params, hand_force_N, grade_pct, direction, occupants, mu_drum, None,
+                                  initial_temp_C, horizon_s=duration_s))
+    tyre = float(tyre_adhesion_margin(params, grade_pct, direction, occupants))
+    brake_min = float(np.min(m))
+    reasons = []
+    if brake_min < 1.0:
+        reasons.append(f"brake slips at t = {t_slip:.0f} s" if np.isfinite(t_slip) else "brake slips")
+    if tyre < 1.0:
+        reasons.append("rear tyres skid (adhesion)")
+    return HoldVerdict(brake_min, tyre, t_slip, not reasons, "; ".join(reasons) or "holds")
