@@ -1,0 +1,3 @@
+from rollaway.cli import run
+
+run()

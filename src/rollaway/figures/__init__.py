@@ -1,0 +1,1 @@
+"""Figures: matplotlib (Agg) renderings of model results."""

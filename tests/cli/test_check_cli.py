@@ -1,0 +1,53 @@
+import json
+
+import pytest
+
+
+def test_check_analytic_defaults_pass(run_cli):
+    code, out, err = run_cli("check", "--analytic")
+    assert code == 0, err
+    assert out.count("PASS") == 4 and "FAIL" not in out
+
+
+def test_check_analytic_paper30_reports_tyre_skid(run_cli):
+    code, out, _ = run_cli("check", "--analytic", "paper30", "--format", "json")
+    rows = json.loads(out)
+    down = next(r for r in rows if r["direction"] == "downhill")
+    assert code == 1 and down["verdict"] == "FAIL" and "tyre" in down["reason"]
+
+
+def test_check_analytic_weak_brake_fails(run_cli, tmp_path):
+    f = tmp_path / "weak.toml"
+    f.write_text('extends = "paper"\nmu_drum = 0.08\n')
+    code, out, _ = run_cli("check", "--analytic", "--params", f)
+    assert code == 1 and "FAIL" in out
+
+
+@pytest.mark.parametrize("args, needle", [
+    (["--analytic", "fmvs135"], "did you mean 'fmvss135'"),
+    (["--analytic", "--params", "papr"], "did you mean 'paper'"),
+])
+def test_check_bad_input(run_cli, args, needle):
+    code, _, err = run_cli("check", *args)
+    assert code == 2 and needle in err and "Traceback" not in err
+
+
+def test_paper_figures(run_cli, tmp_path):
+    code, out, err = run_cli("paper", "--out", tmp_path / "fig")
+    assert code == 0, err
+    pngs = sorted(p.name for p in (tmp_path / "fig").glob("*.png"))
+    assert len(pngs) == 6 and pngs[0] == "fig09_temperature.png"
+    assert all((tmp_path / "fig" / n).stat().st_size > 10_000 for n in pngs)
+
+
+def test_params_lists_assumed(run_cli):
+    code, out, _ = run_cli("params", "--format", "csv")
+    assert code == 0
+    mu = next(line for line in out.splitlines() if line.startswith("mu_drum,"))
+    assert ",yes," in mu
+
+
+def test_help_lists_commands(run_cli):
+    code, out, _ = run_cli("--help")
+    for c in ("brake", "check", "paper", "params"):
+        assert c in out
