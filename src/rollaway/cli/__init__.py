@@ -20,7 +20,7 @@ try:  # typer >= 0.22 carries its own copy of click
 except ImportError:  # pragma: no cover - older typer on real click
     from click.exceptions import NoArgsIsHelpError, UsageError
 
-COMMANDS = ("brake", "check", "params", "paper", "simulate", "sweep", "compare", "diagnose", "fit", "synth")
+COMMANDS = ("brake", "hold", "check", "params", "paper", "simulate", "sweep", "compare", "diagnose", "fit", "synth")
 
 for _name in COMMANDS:
     # a command module that is not in this checkout yet is simply not offered

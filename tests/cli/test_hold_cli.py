@@ -1,0 +1,29 @@
+import json
+
+import pytest
+
+
+def test_hold_rolls_away_when_drum_cools(run_cli):
+    code, out, _ = run_cli("hold", "--grade-pct", 20, "--hand-force-N", 200, "--direction", "uphill")
+    assert code == 1 and "ROLLS AWAY" in out and "brake slips at t = 292 s" in out
+
+
+def test_hold_json_margin_series(run_cli):
+    code, out, _ = run_cli("hold", "--grade-pct", 20, "--hand-force-N", 400, "--direction", "uphill",
+                           "--occupants", 5, "--format", "json")
+    rows = json.loads(out)
+    assert code == 0 and len(rows) == 7 and min(r["hold_margin"] for r in rows) > 1
+
+
+@pytest.mark.parametrize("args, needle", [
+    (["--grade-pct", "120", "--hand-force-N", "300"], "grade 120 % is outside"),
+    (["--grade-pct", "-100", "--hand-force-N", "300"], "grade -100 % is outside"),
+    (["--grade-pct", "twenty", "--hand-force-N", "300"], "--grade-pct"),
+    (["--grade-pct", "20", "--hand-force-N", "-3"], "hand force -3 N is negative"),
+    (["--grade-pct", "20", "--hand-force-N", "300", "--occupants", "9"], "occupants = 9"),
+    (["--grade-pct", "20", "--hand-force-N", "300", "--direction", "up"], "did you mean 'uphill'"),
+    (["--grade-pct", "20", "--hand-force-N", "300", "--tyre-mu", "-0.1"], "tyre_road_mu"),
+])
+def test_hold_bad_input(run_cli, args, needle):
+    code, _, err = run_cli("hold", *args)
+    assert code == 2 and needle in err and len(err.strip().splitlines()) == 1
