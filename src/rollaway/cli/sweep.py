@@ -1,0 +1,74 @@
+"""``rollaway sweep SWEEP.toml``: map where a design holds and where it rolls away."""
+from __future__ import annotations
+
+from pathlib import Path
+from typing import Optional
+
+import typer
+
+from rollaway.errors import UserError, check_choice
+from rollaway.sweep.spec import SIMULATE_MODES
+
+
+def _summary(res) -> None:
+    t = res.table
+    n_sim = int(t["simulated"].sum())
+    typer.echo(f"{res.n_points} points: {int((t['verdict'] == 'hold').sum())} hold, "
+               f"{int((t['verdict'] == 'roll').sum())} roll away, {res.n_failed} failed; "
+               f"{n_sim} simulated in MuJoCo ({res.n_run} now, {res.n_resumed} from an earlier run)")
+    if res.n_disagree:
+        typer.echo(f"{res.n_disagree} points where the paper's 1D check disagrees (see the 'disagreement' column), e.g.:")
+        for text in t.loc[t["agree"] == False, "disagreement"].head(3):  # noqa: E712
+            typer.echo(f"  - {text}")
+    if res.n_failed:
+        first = t.loc[t["error"] != "", "error"].iloc[0]
+        typer.echo(f"warning: {res.n_failed} points failed (see the 'error' column), e.g.: {first}", err=True)
+    typer.echo(f"wall time {res.wall_time_s:.1f} s ({res.n_points / max(res.wall_time_s, 1e-9):.0f} points/s)")
+    for f in res.files:
+        typer.echo(f"wrote {f}")
+
+
+def sweep(
+    spec_path: str = typer.Argument(..., metavar="SWEEP.toml", help="sweep spec (see scenarios/sweeps/)"),
+    out: Optional[str] = typer.Option(None, "--out", help="output folder (default: ./<spec name>-results); "
+                                      "rerun with the same folder to continue an interrupted sweep"),
+    workers: Optional[int] = typer.Option(None, "--workers", help="local worker processes (default: every core)"),
+    dask: Optional[str] = typer.Option(None, "--dask", metavar="ADDRESS",
+                                       help="send the simulations to this dask.distributed scheduler, "
+                                            "e.g. tcp://10.0.0.5:8786"),
+    simulate: Optional[str] = typer.Option(None, "--simulate", help="band | all | none (default: the spec's, band)"),
+    quiet: bool = typer.Option(False, "--quiet", help="no progress bar"),
+    no_plots: bool = typer.Option(False, "--no-plots", help="skip the PNG maps and design chart"),
+    retry_failed: bool = typer.Option(False, "--retry-failed", help="simulate again the points that failed before"),
+) -> int:
+    """Analytic margin of every point, MuJoCo near the hold/roll boundary; table + maps in the output folder.
+
+    Exit 0 when the sweep completes (failed points are rows with an 'error'), 130 when interrupted.
+    """
+    from rollaway.sweep import load_sweep, run_sweep
+
+    if simulate is not None:
+        check_choice(simulate, SIMULATE_MODES, "--simulate mode")
+    if workers is not None and workers < 1:
+        raise UserError(f"--workers {workers} must be ≥ 1 (default: one per core)")
+    if workers is not None and dask:
+        raise UserError("--workers sets local processes; with --dask the cluster's workers run the points — "
+                        "give one or the other")
+    spec = load_sweep(spec_path)
+    out_dir = Path(out) if out else Path(f"{spec.name}-results")
+    if out_dir.exists() and not out_dir.is_dir():
+        raise UserError(f"--out '{out_dir}' is a file; give a folder")
+    log = (lambda msg: None) if quiet else (lambda msg: typer.echo(msg, err=True))
+    res = run_sweep(spec, out_dir, workers=workers, dask_address=dask, simulate=simulate, progress=not quiet,
+                    plots=not no_plots, retry_failed=retry_failed, log=log)
+    if res.interrupted:
+        done = int(res.table["simulated"].sum())
+        typer.echo(f"interrupted: {res.n_run} simulations finished this run, {done} of {res.n_to_simulate} in "
+                   f"total are in {out_dir}; run the same command again to continue", err=True)
+        return 130
+    _summary(res)
+    return 0
+
+
+def register(app: typer.Typer) -> None:
+    app.command("sweep")(sweep)

@@ -1,0 +1,10 @@
+"""Sweeps: map where a design holds and where it rolls away.
+
+``load_sweep(path)`` reads a SWEEP.toml; ``run_sweep(spec, out_dir, ...)`` runs the analytic
+pass over every point, simulates the boundary band in MuJoCo (local processes or a Dask
+cluster), journals each finished point, and writes ``results.parquet``/``results.csv`` and plots.
+"""
+from rollaway.sweep.runner import SweepResult, run_sweep
+from rollaway.sweep.spec import AXES, SweepSpec, grid_spec, load_sweep
+
+__all__ = ["AXES", "SweepResult", "SweepSpec", "grid_spec", "load_sweep", "run_sweep"]

@@ -1,0 +1,109 @@
+"""The analytic pass of a sweep: every point at once, one vectorised call per quantity.
+
+For each point (MODEL.md item 9, via :mod:`rollaway.hold`):
+
+* ``brake_margin_min``: the paper's brake hold margin 2·T_gen(t)/T_req, least over the hold.
+  ΔT(t) is monotone and the torque affine in ΔT, so the least value is at t = 0 or t = duration;
+* ``tyre_margin``: rear-tyre adhesion margin μ_r·N_r / (m g sin θ) (not in the paper);
+* ``paper_verdict``: the paper's 1D check, brake only: "hold" when brake_margin_min ≥ 1;
+* ``analytic_outcome``: both conditions: held, brake_slip or tyre_skid (the weaker one at t = 0
+  decides which gives way first);
+* ``in_band``: the point is near the hold/roll-away boundary, so it is simulated (see :func:`in_band`).
+
+A point whose values the model cannot take (grade beyond ±100 %, 7 occupants, μ_d above 2)
+gets its validation message in ``error`` and NaN results; the others are computed.
+"""
+from __future__ import annotations
+
+import numpy as np
+import pandas as pd
+
+from rollaway.errors import UserError
+from rollaway.hold import MAX_OCCUPANTS, hold_margin, minimum_hand_force_N, time_to_slip_s, tyre_adhesion_margin
+from rollaway.parameters import SPEC_BY_NAME
+from rollaway.physics.drum import DIRECTIONS
+from rollaway.scenario import Scenario
+
+OUTCOMES = ("held", "brake_slip", "tyre_skid")
+
+
+def valid_mask(df: pd.DataFrame) -> np.ndarray:
+    """True where every axis value is one the scenario validation accepts (vectorised)."""
+    g, n, f, d = (df[k].to_numpy(float) for k in ("grade_pct", "occupants", "hand_force_N", "duration_s"))
+    ok = np.isfinite(g) & (g > -100.0) & (g <= 100.0)
+    ok &= np.isfinite(n) & (n >= 0) & (n <= MAX_OCCUPANTS) & (n == np.round(n))
+    ok &= np.isfinite(f) & (f >= 0)
+    ok &= np.isfinite(d) & (d > 0) & (d <= 7 * 86400)
+    for key in ("mu_drum", "initial_drum_temp_C", "tyre_road_mu"):
+        v, spec = df[key].to_numpy(float), SPEC_BY_NAME[key]
+        ok &= np.isfinite(v) & (v >= spec.lower) & (v <= spec.upper)
+    ok &= df["direction"].isin(DIRECTIONS).to_numpy()
+    return ok
+
+
+def point_changes(row) -> dict:
+    """The Scenario.replace() changes of one point (a mapping with the AXES keys)."""
+    from rollaway.sweep.spec import AXES
+    out = {a: row[a] for a in AXES}
+    occ = float(out["occupants"])
+    out["occupants"] = int(occ) if occ == int(occ) else occ
+    return out
+
+
+def invalid_message(base: Scenario, row) -> str:
+    """The scenario validation's own message for a point that failed :func:`valid_mask`."""
+    try:
+        base.replace(**point_changes(row))
+    except (UserError, ValueError, TypeError) as exc:
+        return f"bad input: {exc}"
+    return "bad input: value outside the model's range"
+
+
+def in_band(brake_margin, tyre_margin, band) -> np.ndarray:
+    """Near the boundary: brake or tyre margin within [band low, band high]."""
+    lo, hi = band
+    b, t = np.asarray(brake_margin), np.asarray(tyre_margin)
+    return ((b >= lo) & (b <= hi)) | ((t >= lo) & (t <= hi))
+
+
+def analytic_pass(base: Scenario, points: pd.DataFrame, band) -> pd.DataFrame:
+    """Analytic margins and verdicts of every point (a copy of *points* with result columns)."""
+    out = points.copy()
+    ok = valid_mask(points)
+    v = points[ok]
+    p = base.params
+    g, d = v["grade_pct"].to_numpy(float), v["direction"].to_numpy(str)
+    n, f = v["occupants"].to_numpy(float), v["hand_force_N"].to_numpy(float)
+    mu, t0 = v["mu_drum"].to_numpy(float), v["initial_drum_temp_C"].to_numpy(float)
+    mu_r, dur = v["tyre_road_mu"].to_numpy(float), v["duration_s"].to_numpy(float)
+
+    m_start = hold_margin(p, 0.0, f, g, d, n, mu_drum=mu, initial_temp_C=t0)
+    m_end = hold_margin(p, dur, f, g, d, n, mu_drum=mu, initial_temp_C=t0)
+    brake = np.minimum(m_start, m_end)
+    tyre = tyre_adhesion_margin(p, g, d, n, mu_r)
+    t_slip = time_to_slip_s(p, f, g, d, n, mu, None, t0, horizon_s=dur)
+    f_min = minimum_hand_force_N(p, g, d, n, dur, mu, None, t0)
+
+    tyre_first = (tyre < 1.0) & (tyre <= m_start)
+    outcome = np.where(np.minimum(brake, tyre) >= 1.0, "held", np.where(tyre_first, "tyre_skid", "brake_slip"))
+    t_roll = np.where(outcome == "held", np.nan, np.where(outcome == "tyre_skid", 0.0, t_slip))
+
+    def put(name, values, fill, dtype=None):
+        col = np.full(len(points), fill, dtype=dtype or np.asarray(values).dtype)
+        col[ok] = values
+        out[name] = col
+
+    put("brake_margin_min", brake, np.nan, float)
+    put("tyre_margin", tyre, np.nan, float)
+    put("margin", np.minimum(brake, tyre), np.nan, float)
+    put("analytic_time_to_slip_s", t_slip, np.nan, float)
+    put("min_hand_force_N", f_min, np.nan, float)
+    put("paper_verdict", np.where(brake >= 1.0, "hold", "roll"), "", object)
+    put("analytic_outcome", outcome, "", object)
+    put("analytic_rollaway_time_s", t_roll, np.nan, float)
+    put("in_band", in_band(brake, tyre, band), False, bool)
+    errors = np.full(len(points), "", dtype=object)
+    for i in np.flatnonzero(~ok):
+        errors[i] = invalid_message(base, points.iloc[i])
+    out["error"] = errors
+    return out

@@ -1,0 +1,114 @@
+"""Crash-safe storage of a sweep's simulated points.
+
+``journal.jsonl`` in the output folder holds one JSON line per finished simulation,
+keyed by the point's stable id (a hash of its inputs, :func:`rollaway.sweep.spec.point_ids`).
+Each line is written, flushed and fsync'ed as its point finishes, so a run that is
+interrupted — Ctrl-C, SIGTERM or SIGKILL — loses at most the points in flight.  A line
+torn by a kill is cut off when the journal is reopened.  Running the sweep again reads
+the journal and simulates only the ids it does not hold: no point lost, none done twice.
+
+The analytic columns are not journalled: they are recomputed for every point in
+milliseconds.  ``results.parquet`` and ``results.csv`` are the consolidated table, replaced
+atomically (write to a temporary file, then rename).
+"""
+from __future__ import annotations
+
+import json
+import math
+import os
+from pathlib import Path
+
+import pandas as pd
+
+JOURNAL = "journal.jsonl"
+
+
+def _clean(value):
+    if isinstance(value, float) and not math.isfinite(value):
+        return None if math.isnan(value) else ("inf" if value > 0 else "-inf")
+    return value
+
+
+class Journal:
+    """Append-only JSON-lines record of finished simulations (one per point id)."""
+
+    def __init__(self, folder: str | Path):
+        self.path = Path(folder) / JOURNAL
+        self.path.parent.mkdir(parents=True, exist_ok=True)
+        self.duplicates = 0
+        self._file = None
+
+    def _repair(self) -> None:
+        """Cut a last line torn by a kill (no trailing newline) so appends start on a fresh line."""
+        if not self.path.exists():
+            return
+        data = self.path.read_bytes()
+        if data and not data.endswith(b"\n"):
+            keep = data.rfind(b"\n") + 1
+            with open(self.path, "r+b") as fh:
+                fh.truncate(keep)
+
+    def load(self) -> dict[str, dict]:
+        """Every record by point id (first one wins; later duplicates are counted, not used)."""
+        self._repair()
+        records: dict[str, dict] = {}
+        self.duplicates = 0
+        if not self.path.exists():
+            return records
+        with open(self.path, encoding="utf-8") as fh:
+            for line in fh:
+                try:
+                    rec = json.loads(line)
+                except json.JSONDecodeError:
+                    continue
+                pid = rec.get("point_id")
+                if pid is None:
+                    continue
+                if pid in records:
+                    self.duplicates += 1
+                    continue
+                records[pid] = rec
+        return records
+
+    def append(self, record: dict) -> None:
+        if self._file is None:
+            self._repair()
+            self._file = open(self.path, "a", encoding="utf-8")
+        self._file.write(json.dumps({k: _clean(v) for k, v in record.items()}) + "\n")
+        self._file.flush()
+        os.fsync(self._file.fileno())
+
+    def close(self) -> None:
+        if self._file is not None:
+            self._file.close()
+            self._file = None
+
+
+def drop_records(folder: str | Path, point_ids: set[str]) -> None:
+    """Rewrite the journal without *point_ids* (used to retry failed points)."""
+    path = Path(folder) / JOURNAL
+    if not path.exists() or not point_ids:
+        return
+    keep = []
+    for line in path.read_text(encoding="utf-8").splitlines():
+        try:
+            if json.loads(line).get("point_id") in point_ids:
+                continue
+        except json.JSONDecodeError:
+            continue
+        keep.append(line + "\n")
+    tmp = path.with_suffix(".tmp")
+    tmp.write_text("".join(keep), encoding="utf-8")
+    os.replace(tmp, path)
+
+
+def write_table(df: pd.DataFrame, folder: str | Path, stem: str = "results") -> tuple[Path, Path]:
+    """Write *df* as ``stem.parquet`` and ``stem.csv`` atomically; return both paths."""
+    folder = Path(folder)
+    paths = folder / f"{stem}.parquet", folder / f"{stem}.csv"
+    tmp_pq, tmp_csv = (p.with_name(p.name + ".tmp") for p in paths)
+    df.to_parquet(tmp_pq, index=False)
+    df.to_csv(tmp_csv, index=False)
+    os.replace(tmp_pq, paths[0])
+    os.replace(tmp_csv, paths[1])
+    return paths
