@@ -1,0 +1,135 @@
+"""The model against bench data on both channels: errors per test and overall, and where it fails."""
+from __future__ import annotations
+
+import math
+from dataclasses import dataclass, field
+
+import numpy as np
+
+from rollaway.bench.calibrate import FitResult, calibrate, evaluate
+from rollaway.bench.measurements import Measurements
+from rollaway.bench.residuals import Noise, association, excursions, noise_estimate, trend_words
+
+NOISE_BAND = 2.5   # a residual leaves the noise band when |r| > 2.5 σ
+
+
+def _errors(r: np.ndarray, t: np.ndarray) -> dict:
+    if r.size == 0:
+        return {"rmse": math.nan, "bias": math.nan, "worst": math.nan, "worst_at_s": math.nan, "n": 0}
+    k = int(np.argmax(np.abs(r)))
+    return {"rmse": float(np.sqrt(np.mean(r ** 2))), "bias": float(r.mean()), "worst": float(r[k]),
+            "worst_at_s": float(t[k]), "n": int(r.size)}
+
+
+@dataclass
+class Comparison:
+    """Errors (measured − model) of one model on one data set, with the failure regions in words."""
+
+    fit: FitResult
+    noise: dict[str, Noise]
+    per_test: list[dict]
+    overall: dict[str, dict]
+    excursions: dict[str, list[dict]]
+    words: list[str] = field(default_factory=list)
+
+    @property
+    def data(self) -> Measurements:
+        return self.fit.data
+
+    def as_dict(self) -> dict:
+        return {"model": {"effects": self.fit.effects, "values": self.fit.values},
+                "noise": {k: v.sigma for k, v in self.noise.items()}, "overall": self.overall,
+                "tests": self.per_test, "excursions": self.excursions, "findings": self.words}
+
+    def table(self) -> str:
+        head = (f"{'test':<10}{'dir':<9}{'F_hb N':>7}{'T0 °C':>7} | {'torque RMSE':>11}{'bias':>8}{'worst':>8}"
+                f"{'at s':>6} | {'temp RMSE':>9}{'bias':>7}{'worst':>7}{'at s':>6}")
+        lines = [head, "-" * len(head)]
+        rows = self.per_test + [{"test_id": "overall", "direction": "", "hand_force_N": math.nan,
+                                 "initial_temp_C": math.nan, **{f"{c}": self.overall[c] for c in self.overall}}]
+        for t in rows:
+            q, h = t["torque"], t["temperature"]
+            f = "" if math.isnan(t["hand_force_N"]) else f"{t['hand_force_N']:.0f}"
+            t0 = "" if math.isnan(t["initial_temp_C"]) else f"{t['initial_temp_C']:.0f}"
+            lines.append(f"{t['test_id']:<10}{t['direction']:<9}{f:>7}{t0:>7} | {q['rmse']:>11.3g}{q['bias']:>8.3g}"
+                         f"{q['worst']:>8.3g}{q['worst_at_s']:>6.0f} | {h['rmse']:>9.3g}{h['bias']:>7.3g}"
+                         f"{h['worst']:>7.3g}{h['worst_at_s']:>6.0f}")
+        return "\n".join(lines)
+
+    def summary(self) -> str:
+        return self.table() + "\n\n" + "\n".join(f"- {w}" for w in self.words)
+
+    def __repr__(self):
+        return self.summary()
+
+    def report(self, path) -> None:
+        from rollaway.bench.report import comparison_report
+        comparison_report(self, path)
+
+
+def residual_channels(fit: FitResult) -> dict[str, tuple[np.ndarray, np.ndarray, str]]:
+    """channel → (residual, mask of samples that are predictions, unit)."""
+    rt, rq = fit.residuals()
+    return {"torque": (rq, np.ones(len(rq), bool), "N·m"), "temperature": (rt, fit.data.time_s > 0, "°C")}
+
+
+def compare_fit(fit: FitResult) -> Comparison:
+    data = fit.data
+    tau = fit.model.state(data, fit.values).cooling_time_constant_s
+    chans = residual_channels(fit)
+    noise = {}
+    for ch, (r, m, _) in chans.items():
+        values = data.torque_Nm if ch == "torque" else data.drum_temp_C
+        noise[ch] = noise_estimate(data, values, tau) or Noise(float(np.sqrt(np.mean(r[m] ** 2))) or 1e-9, 1)
+    per_test = []
+    for info in data.test_info():
+        rows = data.test_index == data.tests.index(info["test_id"])
+        entry = dict(info)
+        for ch, (r, m, _) in chans.items():
+            entry[ch] = _errors(r[rows & m], data.time_s[rows & m])
+        per_test.append(entry)
+    overall = {ch: _errors(r[m], data.time_s[m]) for ch, (r, m, _) in chans.items()}
+    exc = {ch: excursions(data, r, noise[ch].sigma, NOISE_BAND, m) for ch, (r, m, _) in chans.items()}
+    words = []
+    info = {t["test_id"]: t for t in data.test_info()}
+    for ch, (r, m, unit) in chans.items():
+        sig = noise[ch].sigma
+        o = overall[ch]
+        ratio = o["rmse"] / sig if sig > 0 else math.inf
+        verdict = "within the noise" if ratio < 1.3 else "above the noise"
+        words.append(f"{ch}: RMSE {o['rmse']:.3g} {unit} against a noise level of {sig:.3g} {unit} ({ratio:.1f}×, "
+                     f"{verdict}); bias {o['bias']:+.3g} {unit}; worst {o['worst']:+.3g} {unit}.")
+        if ratio >= 1.3:
+            name, share = association(data, r, fit.prediction.drum_temp_C, m)[0]
+            words.append(f"{ch}: the residual follows {name} ({share:.0%} of its variance explained by {name}; "
+                         f"it {trend_words(data, r, fit.prediction.drum_temp_C, name, m)}).")
+        runs = sorted(exc[ch], key=lambda e: -abs(e["worst"]))
+        for e in runs[:8]:
+            t = info[e["test_id"]]
+            span = (f"at {e['from_s']:.0f} s" if e["from_s"] == e["to_s"]
+                    else f"from {e['from_s']:.0f} s to {e['to_s']:.0f} s")
+            words.append(f"{ch}: test {e['test_id']} ({t['direction']}, {t['hand_force_N']:.0f} N) is {e['sign']} the "
+                         f"±{NOISE_BAND:g}σ band (±{NOISE_BAND * sig:.3g} {unit}) {span} ({e['samples']} sample"
+                         f"{'s' if e['samples'] > 1 else ''}, worst {e['worst']:+.3g} {unit} at {e['worst_at_s']:.0f} s).")
+        if len(runs) > 8:
+            words.append(f"{ch}: … and {len(runs) - 8} more excursions outside the band.")
+        if not runs:
+            words.append(f"{ch}: no sample leaves the ±{NOISE_BAND:g}σ noise band.")
+    return Comparison(fit, noise, per_test, overall, exc, words)
+
+
+def compare(data: Measurements, params=None, effects=None, *, calibrated: bool = False) -> Comparison:
+    """Compare the model with *data*.
+
+    *effects*: names (at their typical values) or ``{name: {param: value}}``.  With
+    ``calibrated=True`` μ_d, h and the effects' parameters are fitted first; otherwise the
+    model runs at the set's values (``paper`` by default).
+    """
+    from rollaway.bench.synth import _effect_values
+    chosen = _effect_values(effects or ())
+    values = {f"{n}.{k}": v for n, vals in chosen.items() for k, v in vals.items()}
+    if calibrated:
+        fit = calibrate(data, list(chosen), params, start=values)
+    else:
+        fit = evaluate(data, list(chosen), params, values)
+    return compare_fit(fit)

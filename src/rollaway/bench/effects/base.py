@@ -1,0 +1,171 @@
+"""The fixed interface every physical effect implements (the plugin contract).
+
+An effect is a small class with documented physics, the signature it leaves in the
+residuals of the paper's 1D model, parameters with units, bounds and a neutral value,
+and a reference.  It changes the model only through *hooks*, each called at one
+depth of the model chain (MODEL.md items 1–7)::
+
+    drum temperature T_d(t)        hook: drum_temperature   (cooling law; the measured channel)
+    lining temperature T_l(t)      hook: lining_temperature (what the lining/shoe feels; default T_d)
+    lining displacement u_6        hook: displacement       (eq. 24)
+    lining modulus E_l             hook: lining_modulus     (eq. 16 material value)
+    installation gap l_g           hook: gap                (eq. 16b)
+    clamp force F_l0               hook: clamp_force        (eq. 16a/b, before self-energising)
+    friction coefficient μ         hook: friction           (eqs. 17b–21)
+
+Each hook receives the :class:`ModelState` (all samples of all tests, already computed
+upstream quantities) and ``v``, a dict of this effect's parameter values, and returns
+the (possibly) modified quantity.  The default hooks return the input unchanged.
+The model skips an effect whose parameters are all at their neutral values, so the
+neutral model is bit-identical to the baseline (:func:`rollaway.brake.drum_brake`).
+
+Writing your own effect (plugin)::
+
+    # my_effect.py, used as:  rollaway fit DATA.csv --effect-file my_effect.py --effect humidity
+    from rollaway.bench.effects.base import Effect, EffectParameter
+
+    class Humidity(Effect):
+        name = "humidity"
+        summary = "moisture raises the lining friction while the drum is still cold"
+        physics = "μ = μ_d·(1 + a·exp(−(T_l − T_amb)/30 K))"
+        signature = "torque residual grows at the cold end of every test, both directions"
+        reference = "your bench notes"
+        parameters = (EffectParameter("a", "–", neutral=0.0, lower=0.0, upper=1.0, initial=0.05,
+                                      description="relative friction gain when cold"),)
+
+        def friction(self, state, mu, v):
+            return mu * (1 + v["a"] * np.exp(-(state.lining_temp_C - state.ambient_C) / 30.0))
+
+A module passed with ``--effect-file`` may define any number of ``Effect`` subclasses
+(each with a unique ``name``); an installed package may expose them under the entry-point
+group ``rollaway.effects`` (``name = "package.module:ClassName"``).
+"""
+from __future__ import annotations
+
+from dataclasses import dataclass, field
+from typing import ClassVar
+
+import numpy as np
+
+from rollaway.errors import UserError
+from rollaway.parameters import BrakeParameters
+
+
+@dataclass(frozen=True)
+class EffectParameter:
+    """One parameter of an effect: unit, neutral value (no effect), bounds and the fit's start."""
+
+    name: str
+    unit: str
+    neutral: float
+    lower: float
+    upper: float
+    initial: float          # starting point of a fit (off the neutral bound)
+    description: str = ""
+    typical: float | None = None   # a clearly visible but realistic value (synth default)
+
+    def __post_init__(self):
+        if not (self.lower <= self.neutral <= self.upper and self.lower <= self.initial <= self.upper):
+            raise ValueError(f"parameter '{self.name}': neutral and initial must lie in [lower, upper]")
+
+
+@dataclass
+class ModelState:
+    """All samples of all tests, flattened; filled stage by stage by the model."""
+
+    params: BrakeParameters
+    time_s: np.ndarray
+    hand_force_N: np.ndarray
+    sign: np.ndarray               # +1 facing downhill, −1 uphill (eqs. 18/19)
+    initial_temp_C: np.ndarray     # T_0 of the sample's test
+    ambient_C: np.ndarray
+    heat_transfer_W_m2K: float
+    mu_drum: float
+    drum_temp_C: np.ndarray | None = None
+    lining_temp_C: np.ndarray | None = None
+    extra: dict = field(default_factory=dict)
+
+    @property
+    def cooling_time_constant_s(self) -> float:
+        """Convective τ = ρ c_p V / (h A) with the state's (fitted) h [s]."""
+        p = self.params
+        return (p.drum_density_kg_m3 * p.drum_specific_heat_J_kgK * p.drum_volume_m3
+                / (self.heat_transfer_W_m2K * p.cooled_area_m2))
+
+    @property
+    def delta_drum_K(self) -> np.ndarray:
+        return self.drum_temp_C - self.initial_temp_C
+
+    @property
+    def delta_lining_K(self) -> np.ndarray:
+        return self.lining_temp_C - self.initial_temp_C
+
+
+class Effect:
+    """Base class of a physical effect; subclass it and override the hooks you need."""
+
+    name: ClassVar[str] = ""
+    summary: ClassVar[str] = ""
+    physics: ClassVar[str] = ""
+    signature: ClassVar[str] = ""
+    reference: ClassVar[str] = ""
+    parameters: ClassVar[tuple[EffectParameter, ...]] = ()
+
+    # -- bookkeeping -----------------------------------------------------------------
+    @classmethod
+    def parameter(cls, name: str) -> EffectParameter:
+        for p in cls.parameters:
+            if p.name == name:
+                return p
+        from rollaway.errors import suggest
+        raise UserError(f"effect '{cls.name}' has no parameter '{name}'"
+                        f"{suggest(name, [p.name for p in cls.parameters])}; its parameters are: "
+                        + ", ".join(p.name for p in cls.parameters))
+
+    @classmethod
+    def neutral_values(cls) -> dict[str, float]:
+        return {p.name: p.neutral for p in cls.parameters}
+
+    @classmethod
+    def typical_values(cls) -> dict[str, float]:
+        return {p.name: (p.typical if p.typical is not None else p.initial) for p in cls.parameters}
+
+    @classmethod
+    def is_neutral(cls, v: dict[str, float]) -> bool:
+        return all(v.get(p.name, p.neutral) == p.neutral for p in cls.parameters)
+
+    @classmethod
+    def touches_temperature(cls) -> bool:
+        """True if the effect changes the measured drum-temperature channel."""
+        return cls.drum_temperature is not Effect.drum_temperature
+
+    @classmethod
+    def describe(cls) -> str:
+        lines = [f"{cls.name}: {cls.summary}", f"  physics:   {cls.physics}",
+                 f"  signature: {cls.signature}", f"  reference: {cls.reference}"]
+        for p in cls.parameters:
+            lines.append(f"  {p.name} [{p.unit}]: neutral {p.neutral:g}, bounds [{p.lower:g}, {p.upper:g}]"
+                         f" — {p.description}")
+        return "\n".join(lines)
+
+    # -- hooks (default: no change) ------------------------------------------------------
+    def drum_temperature(self, state: ModelState, temp_C: np.ndarray, v: dict) -> np.ndarray:
+        return temp_C
+
+    def lining_temperature(self, state: ModelState, temp_C: np.ndarray, v: dict) -> np.ndarray:
+        return temp_C
+
+    def displacement(self, state: ModelState, u6_m: np.ndarray, v: dict) -> np.ndarray:
+        return u6_m
+
+    def lining_modulus(self, state: ModelState, modulus_Pa, v: dict):
+        return modulus_Pa
+
+    def gap(self, state: ModelState, gap_m, v: dict):
+        return gap_m
+
+    def clamp_force(self, state: ModelState, force_N: np.ndarray, v: dict) -> np.ndarray:
+        return force_N
+
+    def friction(self, state: ModelState, mu: np.ndarray, v: dict) -> np.ndarray:
+        return mu

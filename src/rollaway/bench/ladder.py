@@ -1,0 +1,69 @@
+"""Add effects and watch the error fall: the error ladder of ``rollaway fit``."""
+from __future__ import annotations
+
+from dataclasses import dataclass
+
+from rollaway.bench.calibrate import FitResult, calibrate, evaluate
+from rollaway.bench.effects import get_effect
+from rollaway.bench.measurements import Measurements
+
+
+@dataclass
+class Ladder:
+    """Rungs: paper defaults → calibrated baseline → + each effect in turn (each rung calibrated)."""
+
+    data: Measurements
+    rungs: list[tuple[str, FitResult]]
+
+    @property
+    def final(self) -> FitResult:
+        return self.rungs[-1][1]
+
+    @property
+    def baseline(self) -> FitResult:
+        return self.rungs[1][1]
+
+    def as_dict(self) -> dict:
+        return {"ladder": [{"model": name, "rmse_torque_Nm": f.rmse_torque_Nm, "rmse_temp_C": f.rmse_temp_C,
+                            "bic": f.bic if f.k else None, "k": f.k} for name, f in self.rungs],
+                "parameters": {k: e.as_dict() for k, e in self.final.estimates.items()},
+                "warnings": self.final.warnings}
+
+    def table(self, width: int = 30) -> str:
+        top = max(f.rmse_torque_Nm for _, f in self.rungs) or 1.0
+        lines = [f"{'model':<42}{'torque RMSE':>12}{'temp RMSE':>11}{'ΔBIC':>8}  torque error"]
+        ref = self.rungs[1][1].bic
+        for name, f in self.rungs:
+            bar = "█" * max(1, round(width * f.rmse_torque_Nm / top))
+            dbic = f"{f.bic - ref:+.1f}" if f.k else ""
+            lines.append(f"{name:<42}{f.rmse_torque_Nm:>10.3g}  {f.rmse_temp_C:>9.3g}  {dbic:>7}  {bar}")
+        return "\n".join(lines)
+
+    def summary(self) -> str:
+        return self.table() + "\n\n" + self.final.report()
+
+    def __repr__(self):
+        return self.summary()
+
+    def report(self, path) -> None:
+        from rollaway.bench.report import ladder_report
+        ladder_report(self, path)
+
+    def plot(self, path=None):
+        from rollaway.bench.report import ladder_figure
+        fig = ladder_figure(self)
+        if path is not None:
+            fig.savefig(path, dpi=110, bbox_inches="tight")
+        return fig
+
+
+def fit(data: Measurements, effects, params=None, start: dict | None = None) -> Ladder:
+    """Refit with *effects* added one after another; every rung is calibrated from the previous one."""
+    chosen = [get_effect(e) for e in effects]
+    rungs = [("paper defaults", evaluate(data, (), params))]
+    prev = calibrate(data, (), params)
+    rungs.append(("calibrated baseline (μ_d, h)", prev))
+    for i, eff in enumerate(chosen):
+        prev = calibrate(data, chosen[:i + 1], params, start={**prev.values, **(start or {})})
+        rungs.append((("baseline + " if i == 0 else "  + ") + eff.name, prev))
+    return Ladder(data, rungs)

@@ -1,0 +1,45 @@
+"""``rollaway compare``: the model against bench measurements, per test and overall, and where it fails."""
+from __future__ import annotations
+
+import json
+from typing import List, Optional
+
+import typer
+
+from rollaway.cli.bench_common import load_plugins, parse_effects
+
+
+def compare(
+    data: str = typer.Argument(..., help="measurement CSV: test_id,direction,hand_force_N,time_s,drum_temp_C,"
+                                         "torque_Nm[,ambient_C]"),
+    params: Optional[str] = typer.Option(None, "--params", help="parameter set name or TOML file (default: paper)"),
+    effect: List[str] = typer.Option([], "--effect", help="add an effect: NAME or NAME=param=value,... "
+                                                          "(repeatable; unset parameters take typical values)"),
+    effect_file: List[str] = typer.Option([], "--effect-file", help="Python file defining Effect subclasses"),
+    calibrated: bool = typer.Option(False, "--calibrate", help="fit μ_d, h and the effects' parameters first"),
+    report: Optional[str] = typer.Option(None, "--report", help="write a self-contained HTML report here"),
+    json_out: Optional[str] = typer.Option(None, "--json", help="write the errors and findings as JSON here"),
+) -> None:
+    """Errors of the model (paper defaults unless --calibrate) on both channels, per test and overall:
+    RMSE, bias, worst error; residual trends and the tests/time ranges outside the noise band."""
+    from rollaway.bench.compare import compare as run
+    from rollaway.bench.diagnose import _clean
+    from rollaway.bench.measurements import load_measurements
+
+    load_plugins(effect_file)
+    effects = parse_effects(effect)
+    d = load_measurements(data)
+    for note in d.notes:
+        typer.echo(f"note: {note}", err=True)
+    cmp = run(d, params, effects, calibrated=calibrated)
+    typer.echo(cmp.summary())
+    if report:
+        cmp.report(report)
+        typer.echo(f"report: {report}")
+    if json_out:
+        with open(json_out, "w", encoding="utf-8") as fh:
+            json.dump(_clean(cmp.as_dict()), fh, indent=2)
+
+
+def register(app: typer.Typer) -> None:
+    app.command("compare")(compare)

@@ -1,0 +1,48 @@
+"""``rollaway fit``: refit with effects added and watch the error fall (the error ladder)."""
+from __future__ import annotations
+
+import json
+from typing import List, Optional
+
+import typer
+
+from rollaway.cli.bench_common import load_plugins, parse_effects
+
+
+def fit(
+    data: str = typer.Argument(..., help="measurement CSV (see 'rollaway compare --help')"),
+    effect: List[str] = typer.Option(..., "--effect", help="effect to add: NAME or NAME=param=start,... "
+                                                           "(repeatable, in ladder order)"),
+    params: Optional[str] = typer.Option(None, "--params", help="parameter set name or TOML file (default: paper)"),
+    effect_file: List[str] = typer.Option([], "--effect-file", help="Python file defining Effect subclasses"),
+    plot: Optional[str] = typer.Option(None, "--plot", help="draw the ladder and before/after curves to this PNG"),
+    report: Optional[str] = typer.Option(None, "--report", help="write a self-contained HTML report here"),
+    json_out: Optional[str] = typer.Option(None, "--json", help="write the ladder and parameters as JSON here"),
+) -> None:
+    """Error ladder: paper defaults → calibrated baseline → + each effect (each rung calibrated), with the
+    fitted parameters, 95 % intervals and bound warnings."""
+    from rollaway.bench.diagnose import _clean
+    from rollaway.bench.ladder import fit as run
+    from rollaway.bench.measurements import load_measurements
+
+    load_plugins(effect_file)
+    effects = parse_effects(effect)
+    d = load_measurements(data)
+    for note in d.notes:
+        typer.echo(f"note: {note}", err=True)
+    start = {f"{n}.{k}": v for n, vals in effects.items() for k, v in vals.items()}
+    ladder = run(d, list(effects), params, start=start)
+    typer.echo(ladder.summary())
+    if plot:
+        ladder.plot(plot)
+        typer.echo(f"plot: {plot}")
+    if report:
+        ladder.report(report)
+        typer.echo(f"report: {report}")
+    if json_out:
+        with open(json_out, "w", encoding="utf-8") as fh:
+            json.dump(_clean(ladder.as_dict()), fh, indent=2)
+
+
+def register(app: typer.Typer) -> None:
+    app.command("fit")(fit)

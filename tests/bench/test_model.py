@@ -1,0 +1,78 @@
+import numpy as np
+import pytest
+
+from rollaway.bench import BenchModel, Measurements
+from rollaway.bench.effects import CATALOGUE, get_effect
+from rollaway.bench.effects.radiation_cooling import radiative_convective_temperature_C
+from rollaway.bench.effects.shoe_thermal_lag import lagged_temperature_C
+from rollaway.brake import drum_brake
+from rollaway.errors import UserError
+from rollaway.parameters import paper
+
+
+def _data(direction="uphill", force=250.0, t0=200.0):
+    t = np.arange(13) * 300.0
+    n = len(t)
+    return Measurements(np.array(["a"] * n), np.array([direction] * n), np.full(n, force), t, np.full(n, t0),
+                        np.zeros(n))
+
+
+@pytest.mark.parametrize("direction", ["downhill", "uphill"])
+def test_neutral_effects_are_bit_identical_to_baseline(direction):
+    d = _data(direction, 310.0, 190.0)
+    ref = drum_brake(paper(), time_s=d.time_s, hand_force_N=310.0, direction=direction, initial_temp_C=190.0)
+    for effects in ([], list(CATALOGUE)):
+        p = BenchModel(effects=effects).predict(d)
+        assert np.array_equal(p.torque_Nm, ref.torque_Nm)
+        assert np.array_equal(p.drum_temp_C, ref.drum_temp_C)
+
+
+def test_fitted_mu_and_h_reach_the_baseline_functions():
+    d = _data("downhill")
+    p = BenchModel().predict(d, {"mu_drum": 0.35, "heat_transfer_W_m2K": 30.0})
+    ref = drum_brake(paper().replace(mu_drum=0.35, heat_transfer_W_m2K=30.0), time_s=d.time_s,
+                     hand_force_N=250.0, direction="downhill")
+    assert np.array_equal(p.torque_Nm, ref.torque_Nm)
+
+
+@pytest.mark.parametrize("name", list(CATALOGUE))
+def test_every_effect_changes_the_model_and_is_documented(name):
+    eff = get_effect(name)
+    assert eff.physics and eff.signature and eff.reference and eff.parameters
+    for par in eff.parameters:
+        assert par.lower <= par.neutral <= par.upper and par.unit
+    m = BenchModel(effects=[name])
+    d = _data()
+    base = m.predict(d)
+    vals = {f"{name}.{k}": v for k, v in eff.typical_values().items()}
+    changed = m.predict(d, vals)
+    diff = np.abs(changed.torque_Nm - base.torque_Nm).max() + np.abs(changed.drum_temp_C - base.drum_temp_C).max()
+    assert diff > 1.0
+
+
+def test_unknown_effect_suggests_the_closest_name():
+    with pytest.raises(UserError, match="did you mean 'lining_creep'"):
+        BenchModel(effects=["lining_crep"])
+
+
+def test_radiation_solution_matches_an_ode_integration():
+    from scipy.integrate import solve_ivp
+    p = paper()
+    cap = p.drum_density_kg_m3 * p.drum_specific_heat_J_kgK * p.drum_volume_m3
+    t = np.arange(13) * 300.0
+
+    def rhs(_, y):
+        return [-(40 * 0.08 * (y[0] - 27) + 0.7 * 5.670374419e-8 * 0.08 * ((y[0] + 273.15) ** 4 - 300.15 ** 4)) / cap]
+    ref = solve_ivp(rhs, (0, 3600), [210.0], t_eval=t, rtol=1e-10, atol=1e-10).y[0]
+    ours = radiative_convective_temperature_C(t, 210.0, 27.0, 40.0, 0.7, 0.08, cap)
+    assert np.abs(ours - ref).max() < 1e-3
+
+
+def test_shoe_lag_solves_its_ode():
+    t = np.linspace(0, 3600, 3601)
+    tl = lagged_temperature_C(t, 200.0, 27.0, 1000.0, 700.0)
+    td = 27.0 + 173.0 * np.exp(-t / 1000.0)
+    dtl = np.gradient(tl, t)
+    assert tl[0] == pytest.approx(200.0)
+    assert np.abs(dtl[1:-1] - (td - tl)[1:-1] / 700.0).max() < 1e-4
+    assert np.all(tl >= td - 1e-9)   # the shoe stays warmer than the drum
