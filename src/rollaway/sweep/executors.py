@@ -15,6 +15,7 @@ import multiprocessing
 import os
 import signal
 import socket
+import sys
 import time
 from collections.abc import Callable, Iterable, Iterator
 from concurrent.futures import FIRST_COMPLETED, Future, ProcessPoolExecutor, wait
@@ -100,13 +101,25 @@ class SerialExecutor:
         pass
 
 
+def _mp_context():
+    """forkserver (no fork of a threaded parent), with rollaway and MuJoCo preloaded once.
+
+    Like spawn, it re-imports the main script in the workers; a main read from stdin
+    (``python -``) cannot be, so that case falls back to fork.
+    """
+    main_path = getattr(sys.modules.get("__main__"), "__file__", None)
+    if main_path and not os.path.exists(main_path):
+        return multiprocessing.get_context("fork")
+    ctx = multiprocessing.get_context("forkserver")
+    ctx.set_forkserver_preload(["rollaway.sweep.executors", "rollaway.sim"])
+    return ctx
+
+
 class ProcessExecutor:
     """Local worker processes (one per core by default); tasks go out in a bounded window."""
 
     def __init__(self, workers: int, simulate_fn: SimulateFn | None = None):
-        ctx = multiprocessing.get_context("forkserver")
-        ctx.set_forkserver_preload(["rollaway.sweep.executors", "rollaway.sim"])
-        self.pool = ProcessPoolExecutor(max_workers=workers, mp_context=ctx, initializer=_ignore_sigint)
+        self.pool = ProcessPoolExecutor(max_workers=workers, mp_context=_mp_context(), initializer=_ignore_sigint)
         self.fn = partial(run_task, simulate_fn=simulate_fn)
         self.window = 4 * workers
         self._pending: set[Future] = set()
