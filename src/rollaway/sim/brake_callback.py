@@ -1,0 +1,95 @@
+"""The drum parking brake as a time-varying static-friction capacity of the rear wheel hinges.
+
+Each rear wheel gets one drum (the hand lever drives both through an equaliser, eq. 24 is
+per drum), so its hinge's ``dof_frictionloss`` is the torque of one drum, eq. (17b):
+T_gen(t) = μ_d · F_l(t) · r_d with F_l from eqs. (16a/b), (18)–(21), (24) and the drum
+temperature from the cooling law, eq. (10) — all from :func:`rollaway.brake.drum_brake`.
+
+Direction (eqs. 18–21): the shoe's self-energising depends on the sense of the torque the
+brake resists.  A wheel driven *forward* (positive hinge rotation about the car's +y axis,
+what gravity does to a car facing downhill) gets the eq. (18) capacity (``"downhill"``), a
+wheel driven backward the eq. (19) capacity (``"uphill"``).  Per wheel and per update the
+driven sense is the sign of the wheel speed when it turns (|ω| > :data:`OMEGA_TURNING_RAD_S`),
+otherwise the opposite of the sign of the hinge's friction-constraint force (what the brake
+is resisting at rest).
+
+Update period: the capacity is written every :data:`UPDATE_STEPS` MuJoCo steps (20 ms at the
+1 ms step [assumed]); the drum model changes on the cooling time scale τ ≈ 1000 s, so the
+capacity changes by < 0.003 % between updates.  The torque series is precomputed on the
+update grid (vectorised drum model), so an update costs one array lookup.
+"""
+from __future__ import annotations
+
+import mujoco
+import numpy as np
+
+from rollaway.brake import drum_brake
+from rollaway.errors import UserError
+from rollaway.hold import validate_hand_force
+from rollaway.scenario import Scenario
+from rollaway.sim.model import ModelInfo
+
+UPDATE_STEPS = 20                 # MuJoCo steps between brake updates [assumed]
+OMEGA_TURNING_RAD_S = 1e-3        # a wheel turning faster than this is "driven" in its sense of rotation
+_FRICTION_DOF = int(mujoco.mjtConstraint.mjCNSTR_FRICTION_DOF)
+
+
+class BrakeController:
+    """Precomputed drum torque on the update grid; writes the rear hinges' frictionloss."""
+
+    def __init__(self, scenario: Scenario, info: ModelInfo, model: mujoco.MjModel, horizon_s: float):
+        self.info = info
+        self.period_s = UPDATE_STEPS * model.opt.timestep
+        n = int(np.ceil(horizon_s / self.period_s)) + 2
+        self.time_s = np.arange(n) * self.period_s
+        p, force = scenario.params, float(validate_hand_force(scenario.hand_force_N))
+        fwd = drum_brake(p, time_s=self.time_s, hand_force_N=force, direction="downhill")   # eq. (18)
+        rev = drum_brake(p, time_s=self.time_s, hand_force_N=force, direction="uphill")     # eq. (19)
+        for name, series in (("downhill", fwd), ("uphill", rev)):
+            if np.any(series.self_locked):
+                raise UserError(f"{scenario.source or scenario.name}: the shoe self-locks when driven {name} with "
+                                f"mu_drum = {p.mu_drum:g} (l_f − μ_d·l_fr ≤ 0, eqs. 18–21): the 1D model has no "
+                                f"finite torque to simulate; lower mu_drum")
+        # torque[0] when driven backward (eq. 19), torque[1] when driven forward (eq. 18)
+        self.torque_Nm = np.stack([rev.torque_Nm, fwd.torque_Nm])
+        self.drum_temp_C = fwd.drum_temp_C
+        # driven sense per rear wheel: +1 forward.  Gravity drives a car facing downhill forward.
+        start = 1 if info.facing == "downhill" else -1
+        self.sense = np.array([start, start], dtype=int)
+        self._dofs = np.array(info.rear_dofs)
+
+    def index(self, time_s: float) -> int:
+        return min(int(round(time_s / self.period_s)), len(self.time_s) - 1)
+
+    def capacity_Nm(self, k: int, sense=None) -> np.ndarray:
+        """Per-wheel capacity at update *k* for the driven *sense* (default: the current one)."""
+        s = self.sense if sense is None else np.asarray(sense)
+        return self.torque_Nm[(s > 0).astype(int), k]
+
+    def friction_force(self, data: mujoco.MjData) -> np.ndarray:
+        """Force of each rear hinge's friction constraint row (0 when the row is absent)."""
+        nefc = data.nefc
+        # fast path: with no equality constraints the dof-friction rows come first, in dof order
+        if nefc >= 2 and data.efc_type[0] == _FRICTION_DOF and data.efc_type[1] == _FRICTION_DOF \
+                and data.efc_id[0] == self._dofs[0] and data.efc_id[1] == self._dofs[1]:
+            return data.efc_force[:2].copy()
+        out = np.zeros(2)
+        for r in np.nonzero(data.efc_type[:nefc] == _FRICTION_DOF)[0]:
+            j = np.nonzero(self._dofs == data.efc_id[r])[0]
+            if j.size:
+                out[j[0]] = data.efc_force[r]
+        return out
+
+    def update(self, model: mujoco.MjModel, data: mujoco.MjData) -> np.ndarray:
+        """Set the rear frictionloss for the current time; return the per-wheel capacity [N·m]."""
+        omega = data.qvel[self._dofs]
+        force = self.friction_force(data)
+        for i in (0, 1):
+            if abs(omega[i]) > OMEGA_TURNING_RAD_S:
+                self.sense[i] = 1 if omega[i] > 0 else -1
+            elif force[i] != 0.0:
+                self.sense[i] = -1 if force[i] > 0 else 1
+        k = self.index(data.time)
+        cap = self.torque_Nm[(self.sense > 0).astype(int), k]
+        model.dof_frictionloss[self._dofs] = cap
+        return cap

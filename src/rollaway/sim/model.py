@@ -1,0 +1,182 @@
+"""Build the MuJoCo car for one scenario from ``models/car.xml`` through :class:`mujoco.MjSpec`.
+
+Everything scenario-dependent is set on the spec, never by editing XML text:
+
+* grade: the ``slope`` frame is rotated about y by θ = atan(|grade|/100) (MODEL.md item 8);
+  downhill is +x of that frame.  A negative grade flips the heading (as in :mod:`rollaway.hold`);
+* heading: facing downhill = car +x along the frame's +x; facing uphill = yawed by π;
+* the car itself from the parameter set: vehicle mass (wheels included), wheel radius,
+  wheelbase, track, centre of gravity, gravity (Table 1 + MODEL.md geometry [assumed]);
+* occupants: 70 kg (``occupant_mass_kg``) bodies welded to the chassis, 1–2 in the front row,
+  3–5 in the rear row (MODEL.md; lateral seat positions are [assumed]);
+* tyre–road friction μ_r on the tyre geoms (priority 1, so theirs wins) and on the road;
+* the rear hinges' ``frictionloss`` starts at the drum torque at t = 0; it is then driven by
+  :class:`rollaway.sim.brake_callback.BrakeController`.
+
+Numerics [assumed, measured — see ``/work/shared/notes/mujoco-findings.md`` and tests/sim]:
+1 ms Euler step, elliptic cone, impratio 100, Newton solver, stiff joint friction
+(``solreffriction 0.004 1``, ``solimpfriction 0.9999 0.9999 0.001``) and tyre contacts
+(``solref 0.004 1``, ``solimp 0.99 0.9999 0.001``).  MuJoCo's soft friction lets a held
+wheel creep at v ≈ (1−d)/d · dof_invweight0 · T / b; after compiling we multiply the rear
+hinges' ``dof_invweight0`` by :data:`REAR_INVWEIGHT_SCALE` (it only scales the constraint
+regulariser; :func:`apply_invweight` must be re-applied after any ``mj_setConst``).  That
+brings creep below 1 mm per simulated hour.  MuJoCo sleep (enabled in the XML so the file
+alone holds a car still) is switched off here: the simulator has its own, event-driven skip.
+"""
+from __future__ import annotations
+
+import math
+from dataclasses import dataclass
+from pathlib import Path
+
+import mujoco
+import numpy as np
+
+from rollaway.errors import UserError
+from rollaway.hold import required_torque, total_mass_kg
+from rollaway.physics.vehicle import FRONT_ROW_SEATS
+from rollaway.scenario import Scenario
+
+MODEL_PATH = Path(__file__).resolve().parents[3] / "models" / "car.xml"
+
+WHEEL_MASS_KG = 15.0          # [assumed] one wheel with tyre and drum; counts in the vehicle mass
+WHEEL_WIDTH_M = 0.2           # [assumed] for the wheel inertia only
+REAR_INVWEIGHT_SCALE = 1e-3   # [assumed] measured: creep 0.6 mm/h instead of 61 mm/h at 20 %
+CHASSIS_BOX_M = (4.2, 1.7, 1.0)  # [assumed] box whose inertia the chassis gets
+# lateral seat positions, occupants 1..5 (y, +left) [assumed]; rows from MODEL.md
+SEAT_Y_M = (0.4, -0.4, 0.5, -0.5, 0.0)
+WHEELS = ("fl", "fr", "rl", "rr")
+REAR = ("rl", "rr")
+
+
+@dataclass(frozen=True)
+class ModelInfo:
+    """What the simulator needs to know about a compiled car."""
+
+    grade_pct: float                 # |grade| the road is tilted by
+    facing: str                      # heading relative to the fall line after the grade's sign
+    theta_rad: float
+    total_mass_kg: float             # car + occupants, as compiled (checked against hold.total_mass_kg)
+    demand_axle_Nm: float            # T_req, eq. (23), at the rear axle
+    wheel_radius_m: float
+    downhill_unit: np.ndarray        # world-frame unit vector pointing down the slope
+    car_body: int
+    car_qpos_adr: int                # free joint: qpos[adr:adr+3] is the car origin position
+    car_dof_adr: int                 # free joint: qvel[adr:adr+3] is the linear velocity
+    rear_dofs: tuple[int, int]       # dof addresses of hinge_rl, hinge_rr
+    front_dofs: tuple[int, int]
+    rear_tyre_geoms: tuple[int, int]
+    road_geom: int
+
+
+def _car_forward_sign(facing: str) -> float:
+    return 1.0 if facing == "downhill" else -1.0
+
+
+def effective_slope(scenario: Scenario) -> tuple[float, str]:
+    """(|grade|, facing) after folding a negative grade into the heading (as rollaway.hold does)."""
+    g = float(scenario.grade_pct)
+    facing = scenario.direction
+    if g < 0:
+        facing = "uphill" if facing == "downhill" else "downhill"
+    return abs(g), facing
+
+
+def _box_inertia(mass, size):
+    lx, ly, lz = size
+    return [mass / 12 * (ly**2 + lz**2), mass / 12 * (lx**2 + lz**2), mass / 12 * (lx**2 + ly**2)]
+
+
+def build_spec(scenario: Scenario, *, sleep: bool = False, model_path: Path = MODEL_PATH) -> mujoco.MjSpec:
+    """The car's :class:`mujoco.MjSpec`, configured for *scenario* (not compiled)."""
+    if not model_path.is_file():
+        raise UserError(f"car model '{model_path}' is missing; reinstall rollaway from its source tree")
+    p = scenario.params
+    spec = mujoco.MjSpec.from_file(str(model_path))
+    grade, facing = effective_slope(scenario)
+    theta = math.atan(grade / 100.0)
+    spec.option.gravity = [0.0, 0.0, -p.gravity_m_s2]
+    if not sleep:
+        spec.option.enableflags &= ~int(mujoco.mjtEnableBit.mjENBL_SLEEP)
+    spec.frame("slope").quat = [math.cos(theta / 2), 0.0, math.sin(theta / 2), 0.0]
+
+    # vehicle geometry from the parameter set
+    R, L, track = p.wheel_radius_m, p.wheelbase_m, p.track_m
+    m_chassis = p.vehicle_mass_kg - 4 * WHEEL_MASS_KG
+    if m_chassis <= 0:
+        raise UserError(f"vehicle_mass_kg = {p.vehicle_mass_kg:g} must exceed the four wheels "
+                        f"({4 * WHEEL_MASS_KG:g} kg) for the simulator")
+    a, h = p.cg_behind_front_m, p.cg_height_m
+    car = spec.body("car")
+    sgn = _car_forward_sign(facing)
+    car.pos = [sgn * a, 0.0, 0.0]                  # car CG above the frame origin
+    car.quat = [1.0, 0.0, 0.0, 0.0] if sgn > 0 else [0.0, 0.0, 0.0, 1.0]
+    car.ipos = [(-p.vehicle_mass_kg * a + 4 * WHEEL_MASS_KG * L / 2) / m_chassis, 0.0,
+                (p.vehicle_mass_kg * h - 4 * WHEEL_MASS_KG * R) / m_chassis]
+    car.mass = m_chassis
+    car.inertia = _box_inertia(m_chassis, CHASSIS_BOX_M)
+    i_axle = 0.5 * WHEEL_MASS_KG * R**2
+    i_other = 0.25 * WHEEL_MASS_KG * R**2 + WHEEL_MASS_KG * WHEEL_WIDTH_M**2 / 12
+    for w in WHEELS:
+        body = spec.body(f"wheel_{w}")
+        body.pos = [0.0 if w[0] == "f" else -L, track / 2 if w[1] == "l" else -track / 2, R]
+        body.mass = WHEEL_MASS_KG
+        body.inertia = [i_other, i_axle, i_other]
+        tyre = spec.geom(f"tyre_{w}")
+        tyre.size = [R, 0.0, 0.0]
+        tyre.friction = [p.tyre_road_mu, tyre.friction[1], tyre.friction[2]]
+    road = spec.geom("road")
+    road.friction = [p.tyre_road_mu, road.friction[1], road.friction[2]]
+
+    _add_posts(spec, theta)
+    for i in range(scenario.occupants):
+        x = -(p.front_seat_behind_front_m if i < FRONT_ROW_SEATS else p.rear_seat_behind_front_m)
+        seat = car.add_body(name=f"occupant_{i + 1}", pos=[x, SEAT_Y_M[i], p.seat_height_m],
+                            mass=p.occupant_mass_kg, ipos=[0.0, 0.0, 0.0],
+                            inertia=[4.0, 4.0, 1.5])  # [assumed] seated person
+        seat.add_geom(type=mujoco.mjtGeom.mjGEOM_CAPSULE, size=[0.17, 0.25, 0], pos=[0, 0, 0.3],
+                      contype=0, conaffinity=0, group=1, density=0, material="person")
+    return spec
+
+
+def _add_posts(spec: mujoco.MjSpec, theta: float) -> None:
+    """Vertical (world-frame) posts along the far kerb, so the picture shows the road's tilt."""
+    for i, xs in enumerate(np.arange(-200.0, 201.0, 8.0)):
+        spec.worldbody.add_geom(name=f"post_{i}", type=mujoco.mjtGeom.mjGEOM_CYLINDER, size=[0.06, 1.5, 0],
+                                pos=[xs * math.cos(theta), 4.6, -xs * math.sin(theta) + 1.5],
+                                rgba=[0.9, 0.9, 0.9, 1], contype=0, conaffinity=0, group=1, density=0)
+
+
+def apply_invweight(model: mujoco.MjModel, info: ModelInfo) -> None:
+    """Shrink the rear hinges' dof_invweight0 (re-apply after any ``mj_setConst``)."""
+    for dof in info.rear_dofs:
+        model.dof_invweight0[dof] *= REAR_INVWEIGHT_SCALE
+
+
+def build_model(scenario: Scenario, *, sleep: bool = False) -> tuple[mujoco.MjModel, ModelInfo]:
+    """Compile the car for *scenario*; return the model and a :class:`ModelInfo`.
+
+    The rear hinges' frictionloss is 0 here: the brake controller sets it.
+    """
+    spec = build_spec(scenario, sleep=sleep)
+    model = spec.compile()
+    grade, facing = effective_slope(scenario)
+    theta = math.atan(grade / 100.0)
+    jid = lambda n: mujoco.mj_name2id(model, mujoco.mjtObj.mjOBJ_JOINT, n)  # noqa: E731
+    gid = lambda n: mujoco.mj_name2id(model, mujoco.mjtObj.mjOBJ_GEOM, n)  # noqa: E731
+    car = mujoco.mj_name2id(model, mujoco.mjtObj.mjOBJ_BODY, "car")
+    free = jid("car_free")
+    m_tot = float(model.body_subtreemass[car])
+    m_expected = float(total_mass_kg(scenario.params, scenario.occupants))
+    assert abs(m_tot - m_expected) < 1e-6 * m_expected, (m_tot, m_expected)
+    info = ModelInfo(
+        grade_pct=grade, facing=facing, theta_rad=theta, total_mass_kg=m_tot,
+        demand_axle_Nm=float(required_torque(scenario.params, grade, scenario.occupants)),
+        wheel_radius_m=scenario.params.wheel_radius_m,
+        downhill_unit=np.array([math.cos(theta), 0.0, -math.sin(theta)]),
+        car_body=car, car_qpos_adr=int(model.jnt_qposadr[free]), car_dof_adr=int(model.jnt_dofadr[free]),
+        rear_dofs=tuple(int(model.jnt_dofadr[jid(f"hinge_{w}")]) for w in REAR),
+        front_dofs=tuple(int(model.jnt_dofadr[jid(f"hinge_{w}")]) for w in ("fl", "fr")),
+        rear_tyre_geoms=tuple(gid(f"tyre_{w}") for w in REAR), road_geom=gid("road"))
+    apply_invweight(model, info)
+    return model, info

@@ -1,0 +1,41 @@
+"""Renders: small sizes and few frames to keep the suite quick."""
+import imageio.v3 as iio
+import numpy as np
+import pytest
+
+from rollaway.sim import render, simulate
+from rollaway.sim.render import frame_times
+from tests.sim.conftest import make_scenario
+
+
+@pytest.fixture
+def small(monkeypatch):
+    monkeypatch.setattr(render, "SIZES", {".mp4": (160, 96), ".png": (192, 108), ".gif": (128, 72)})
+    monkeypatch.setattr(render, "FPS", {".mp4": 5, ".gif": 4})
+    monkeypatch.setattr(render, "TIMELAPSE_VIDEO_S", 1.0)
+
+
+def test_frame_times_timelapse_then_real_time():
+    t, speed = frame_times(1000.0, None, 10)
+    assert t[0] == 0 and t[-1] == 1000 and (speed > 1).all()
+    t, speed = frame_times(908.0, 900.0, 10)
+    assert (np.diff(t) > 0).all()
+    assert speed[-1] == 1 and speed[0] > 1
+    assert t[speed == 1][0] == pytest.approx(898.0)
+    t, speed = frame_times(9.0, 1.0, 10)
+    assert (speed == 1).all()
+
+
+@pytest.mark.parametrize("suffix", [".png", ".gif", ".mp4"])
+def test_render_files(small, tmp_path, suffix):
+    path = tmp_path / f"skid{suffix}"
+    s = make_scenario(grade_pct=20, tyre_road_mu=0.3, duration_s=3)
+    r = simulate(s, render=path)
+    assert r.outcome == "tyre_skid"
+    frames = iio.imread(path, index=None) if suffix != ".png" else iio.imread(path)[None]
+    assert frames.shape[0] >= 1
+    w, h = render.SIZES[suffix]
+    assert frames.shape[1:3] == (h, w)
+    assert frames.std() > 10                       # not a blank picture
+    if suffix != ".png":
+        assert frames.shape[0] > 5
