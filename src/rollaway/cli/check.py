@@ -37,25 +37,30 @@ def analytic_rows(preset_names, params) -> dict[str, list]:
 
 def check(
     targets: Optional[List[str]] = typer.Argument(
-        None, help="with --analytic: preset names (fmvss135, unr13h, paper30, or 'all'); default: fmvss135 unr13h"),
+        None, metavar="[SCENARIO]...",
+        help="regulation presets (fmvss135, unr13h, paper30, or 'all') and, without --analytic, scenario "
+             "TOML files; default: fmvss135 unr13h"),
     analytic: bool = typer.Option(False, "--analytic", help="use the paper's analytic check (no simulation)"),
     params: Optional[str] = typer.Option(None, "--params", help="parameter set name or TOML file (default: paper)"),
     fmt: str = typer.Option("table", "--format", help="csv | json | table"),
 ) -> int:
-    """Regulation hold checks; exit 0 when every case holds, 1 when any fails.
+    """Regulation hold checks (the CI gate); exit 0 when every case holds, 1 when any fails.
 
-    Presets: fmvss135 (FMVSS 135 S7.12), unr13h (UN R13-H), paper30 (the paper's 30 % case).
+    By default every scenario is simulated in MuJoCo and fails if the car slips or skids;
+    --analytic uses the paper's check instead.  Presets: fmvss135 (FMVSS 135 S7.12), unr13h
+    (UN R13-H), paper30 (the paper's 30 % case).  --params applies to the presets; a scenario
+    file names its own parameter set.
     """
     check_choice(fmt, FORMATS, "format")
     p = load_parameters(params)
     names = list(targets or DEFAULT_PRESETS)
     if names == ["all"]:
         names = list(PRESETS)
-    for n in names:
-        get_preset(n)
     if not analytic:
         from rollaway.compliance import simulated_check  # MuJoCo gate (issue 4)
-        return simulated_check(names, p, fmt)
+        return simulated_check(names, p if params else None, fmt)
+    for n in names:
+        get_preset(n)
     cols = analytic_rows(names, p)
     write_table(cols, fmt, precision=4)
     if fmt == "table":
