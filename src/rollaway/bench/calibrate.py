@@ -50,6 +50,7 @@ class FitResult:
     n_temp: int
     n_torque: int
     warnings: list[str] = field(default_factory=list)
+    rss_torque_weighted: float | None = None   # the WLS objective (= rss_torque without a noise model)
 
     @property
     def effects(self) -> list[str]:
@@ -69,8 +70,9 @@ class FitResult:
 
     def _loglik_term(self) -> float:
         tiny = 1e-12
+        rss_q = self.rss_torque if self.rss_torque_weighted is None else self.rss_torque_weighted
         return (self.n_temp * math.log(max(self.rss_temp / max(self.n_temp, 1), tiny))
-                + self.n_torque * math.log(max(self.rss_torque / max(self.n_torque, 1), tiny)))
+                + self.n_torque * math.log(max(rss_q / max(self.n_torque, 1), tiny)))
 
     @property
     def bic(self) -> float:
@@ -161,8 +163,10 @@ def calibrate(data: Measurements, effects=(), params=None, *, free=None, start: 
     fixed.update(tv)
     temp = model.drum_temperature(data, fixed)
 
-    def torque_res(vals):
-        return model.predict(data, vals, drum_temp_C=temp).torque_Nm - data.torque_Nm
+    w = 1.0 if data.torque_sigma_Nm is None else np.mean(data.torque_sigma_Nm) / data.torque_sigma_Nm
+
+    def torque_res(vals):   # weighted by 1/σ_i when a noise model is attached (WLS)
+        return (model.predict(data, vals, drum_temp_C=temp).torque_Nm - data.torque_Nm) * w
 
     qv, qse, rss_q, n_q = _stage(model, torque_names, fixed, init, torque_res)
     fixed.update(qv)
@@ -182,7 +186,8 @@ def calibrate(data: Measurements, effects=(), params=None, *, free=None, start: 
                 warnings.append(f"{name} = {v:.4g} is stuck at its {at} bound "
                                 f"({lo if at == 'lower' else hi:g} {model.unit(name)}); the data push it out of "
                                 f"the physical range or the effect is absent — its interval is not meaningful")
-    return FitResult(model, data, fixed, estimates, pred, rss_t, rss_q, n_t, n_q, warnings)
+    rq = data.torque_Nm - pred.torque_Nm
+    return FitResult(model, data, fixed, estimates, pred, rss_t, float(rq @ rq), n_t, n_q, warnings, rss_q)
 
 
 def evaluate(data: Measurements, effects=(), params=None, values: dict | None = None) -> FitResult:
@@ -193,4 +198,6 @@ def evaluate(data: Measurements, effects=(), params=None, values: dict | None = 
     hot = data.time_s > 0
     rt = (data.drum_temp_C - pred.drum_temp_C)[hot]
     rq = data.torque_Nm - pred.torque_Nm
-    return FitResult(model, data, vals, {}, pred, float(rt @ rt), float(rq @ rq), int(hot.sum()), rq.size)
+    w = 1.0 if data.torque_sigma_Nm is None else np.mean(data.torque_sigma_Nm) / data.torque_sigma_Nm
+    return FitResult(model, data, vals, {}, pred, float(rt @ rt), float(rq @ rq), int(hot.sum()), rq.size, [],
+                     float(((rq * w) ** 2).sum()))

@@ -124,7 +124,8 @@ def _clean(o):
 
 def channel_noise(data: Measurements, fit: FitResult) -> tuple[Noise, Noise]:
     tau = fit.model.state(data, fit.values).cooling_time_constant_s
-    nq = noise_estimate(data, data.torque_Nm, tau) or Noise(max(fit.rmse_torque_Nm, 1e-9), max(fit.n_torque - 2, 1))
+    nq = (noise_estimate(data, data.torque_Nm, tau, relative=True)
+          or Noise(max(fit.rmse_torque_Nm, 1e-9), max(fit.n_torque - 2, 1), max(fit.rmse_torque_Nm, 1e-9)))
     nt = noise_estimate(data, data.drum_temp_C, tau) or Noise(max(fit.rmse_temp_C, 1e-9), max(fit.n_temp - 1, 1))
     return nq, nt
 
@@ -133,7 +134,7 @@ def structure(fit: FitResult, nq: Noise, nt: Noise) -> dict:
     rt, rq = fit.residuals()
     hot = fit.data.time_s > 0
     kq, kt = len(fit.model.torque_parameters()), len(fit.model.temperature_parameters())
-    out = {"torque": structure_tests(fit.data, rq, nq, kq),
+    out = {"torque": structure_tests(fit.data, rq, nq, kq, sigma=fit.data.torque_sigma_Nm),
            "temperature": structure_tests(fit.data, rt, nt, kt, hot)}
     out["structured"] = out["torque"]["structured"] or out["temperature"]["structured"]
     return out
@@ -147,7 +148,8 @@ def cv_score(data: Measurements, effects, params, nq: Noise, nt: Noise, start: d
         fit = calibrate(train, effects, params, start=start)
         pred = fit.model.predict(test, fit.values)
         hot = test.time_s > 0
-        scores[i] = (float(((test.torque_Nm - pred.torque_Nm) ** 2).sum()) / nq.sigma ** 2
+        sig = nq.sigma if test.torque_sigma_Nm is None else test.torque_sigma_Nm
+        scores[i] = (float((((test.torque_Nm - pred.torque_Nm) / sig) ** 2).sum())
                      + float(((test.drum_temp_C - pred.drum_temp_C)[hot] ** 2).sum()) / nt.sigma ** 2)
     return scores
 
@@ -165,9 +167,12 @@ def _describe_residual(fit: FitResult, noise: Noise, channel: str) -> str:
 def diagnose(data: Measurements, params=None, effects=None) -> Diagnosis:
     """Rank *effects* (default: the whole catalogue plus registered plugins) against *data*."""
     names = list(available_effects()) if effects is None else [get_effect(e).name for e in effects]
+    data = data.subset(np.ones(len(data), bool))          # a copy that carries the noise model
+    first = calibrate(data, (), params)
+    nq, nt = channel_noise(data, first)
+    data.torque_sigma_Nm = np.maximum(nq.at(first.prediction.torque_Nm), 1e-9)
     paper = evaluate(data, (), params)
-    base = calibrate(data, (), params)
-    nq, nt = channel_noise(data, base)
+    base = calibrate(data, (), params, start=first.values)
     start = {"mu_drum": base.values["mu_drum"], "heat_transfer_W_m2K": base.values["heat_transfer_W_m2K"]}
     cands = []
     for name in names:
@@ -185,8 +190,8 @@ def diagnose(data: Measurements, params=None, effects=None) -> Diagnosis:
             c.cv_better_tests = int((s < base_scores).sum())
     passing = [c for c in strong if c.cv_score is not None and c.cv_score < base_cv]
     base_struct = structure(base, nq, nt)
-    ev = [f"Noise level (per-test smooth curves, no physics): torque σ ≈ {nq.sigma:.3g} N·m, drum temperature "
-          f"σ ≈ {nt.sigma:.3g} °C.",
+    ev = [f"Noise level (per-test smooth curves, no physics): torque σ ≈ {nq.sigma:.3g} N·m (√({nq.absolute:.3g}² + "
+          f"({nq.relative:.2%}·torque)²)), drum temperature σ ≈ {nt.sigma:.3g} °C.",
           f"Paper defaults: torque RMSE {paper.rmse_torque_Nm:.3g} N·m, temperature RMSE {paper.rmse_temp_C:.3g} °C. "
           f"Calibrated baseline (μ_d = {base.values['mu_drum']:.4g}, h = {base.values['heat_transfer_W_m2K']:.4g} "
           f"W/(m² K)): {base.rmse_torque_Nm:.3g} N·m and {base.rmse_temp_C:.3g} °C; "
@@ -242,5 +247,5 @@ def _structure_words(s: dict) -> str:
         t = s[ch]
         parts.append(f"{ch}: variance {t['excess_variance']['ratio']:.2f}× noise (p = {t['excess_variance']['p']:.2g}), "
                      f"lag-1 autocorrelation {t['autocorrelation']['lag1']:+.2f} (p = {t['autocorrelation']['p']:.2g}), "
-                     f"test offsets p = {t['test_offsets']['p']:.2g}")
+                     f"test offsets p = {t['test_offsets']['p']:.2g}, time profile p = {t['time_profile']['p']:.2g}")
     return "; ".join(parts)

@@ -40,6 +40,7 @@ class Measurements:
     source: str = "<data>"
     line: np.ndarray | None = None
     notes: list[str] = field(default_factory=list)
+    torque_sigma_Nm: np.ndarray | None = None   # per-sample noise level (set by diagnose; weights the fits)
 
     def __post_init__(self):
         self.tests = list(dict.fromkeys(self.test_id.tolist()))
@@ -78,7 +79,8 @@ class Measurements:
         return Measurements(self.test_id[m], self.direction[m], self.hand_force_N[m], self.time_s[m],
                             self.drum_temp_C[m], self.torque_Nm[m],
                             None if self.ambient_C is None else self.ambient_C[m], self.source,
-                            None if self.line is None else self.line[m])
+                            None if self.line is None else self.line[m], [],
+                            None if self.torque_sigma_Nm is None else self.torque_sigma_Nm[m])
 
     def to_frame(self):
         import pandas as pd

@@ -17,22 +17,35 @@ from scipy import stats
 from rollaway.bench.measurements import Measurements
 
 FLEX_BASIS = 4          # 1, x, x², x³ per test
-STRUCTURE_P = 1e-3      # significance of each structure test
+STRUCTURE_P = 5e-3      # significance of each structure test
 CHANNELS = {"torque": ("torque_Nm", "N·m"), "temperature": ("drum_temp_C", "°C")}
 
 
 @dataclass
 class Noise:
-    sigma: float
+    """Noise model σ_i = √(a² + (b·y_i)²): absolute part a, relative part b (of the signal level y)."""
+
+    sigma: float            # pooled (root-mean-square) σ over the samples
     dof: int
+    absolute: float = 0.0
+    relative: float = 0.0
+
+    def at(self, level) -> np.ndarray:
+        return np.sqrt(self.absolute ** 2 + (self.relative * np.asarray(level, float)) ** 2)
 
     def as_dict(self):
-        return {"sigma": self.sigma, "dof": self.dof}
+        return {"sigma": self.sigma, "dof": self.dof, "absolute": self.absolute, "relative": self.relative}
 
 
-def noise_estimate(data: Measurements, values: np.ndarray, time_constant_s: float) -> Noise | None:
-    """Pooled per-test smooth-curve residual standard deviation of *values* (one channel)."""
-    rss, dof = 0.0, 0
+def noise_estimate(data: Measurements, values: np.ndarray, time_constant_s: float,
+                   relative: bool = False) -> Noise | None:
+    """Noise of one channel from per-test smooth curves (no physics).
+
+    With *relative*, the per-test variances s_k² are regressed (non-negative least squares,
+    weighted by their dof) on a² + b²·⟨y²⟩_k, so noise proportional to the signal (a torque
+    σ of 1–2 %) is recognised; otherwise σ is one pooled constant.
+    """
+    rss_k, dof_k, lev_k = [], [], []
     for i in range(data.n_tests):
         rows = data.test_index == i
         n = int(rows.sum())
@@ -42,27 +55,47 @@ def noise_estimate(data: Measurements, values: np.ndarray, time_constant_s: floa
         basis = np.vander(x, FLEX_BASIS, increasing=True)
         coef, *_ = np.linalg.lstsq(basis, values[rows], rcond=None)
         r = values[rows] - basis @ coef
-        rss += float(r @ r)
-        dof += n - FLEX_BASIS
+        rss_k.append(float(r @ r))
+        dof_k.append(n - FLEX_BASIS)
+        lev_k.append(float(np.mean((basis @ coef) ** 2)))
+    dof = int(sum(dof_k))
     if dof == 0:
         return None
-    return Noise(math.sqrt(rss / dof), dof)
+    pooled = math.sqrt(sum(rss_k) / dof)
+    if not relative or len(rss_k) < 3:
+        return Noise(pooled, dof, pooled, 0.0)
+    from scipy.optimize import nnls
+    d = np.array(dof_k, float)
+    s2 = np.array(rss_k) / d
+    design = np.column_stack([np.ones_like(s2), np.array(lev_k)])
+    fitted = np.full_like(s2, float(np.sum(d * s2) / np.sum(d)))
+    for _ in range(3):    # iteratively reweighted: var(s²) ∝ σ⁴/dof, σ from the current fit (not the noisy s²)
+        w = np.sqrt(d) / np.maximum(fitted, 1e-30)
+        (a2, b2), _ = nnls(design * w[:, None], s2 * w)
+        fitted = np.maximum(design @ np.array([a2, b2]), 1e-30)
+    if a2 + b2 <= 0:
+        return Noise(pooled, dof, pooled, 0.0)
+    sig = np.sqrt(a2 + b2 * np.array(lev_k))
+    return Noise(float(np.sqrt(np.sum(d * sig ** 2) / dof)), dof, math.sqrt(a2), math.sqrt(b2))
 
 
 def structure_tests(data: Measurements, residual: np.ndarray, noise: Noise, k: int = 0,
-                    mask: np.ndarray | None = None) -> dict:
+                    mask: np.ndarray | None = None, sigma: np.ndarray | None = None) -> dict:
     """Tests for structure left in *residual* (measured − model) given the noise level.
 
     * ``excess_variance``: residual variance against the noise variance (F test);
     * ``autocorrelation``: pooled lag-1 autocorrelation within tests (white noise: ≈ 0);
-    * ``test_offsets``: per-test mean residuals against σ/√n (χ² test).
-    Each has a p-value; ``structured`` is True if any p < 0.001.
+    * ``test_offsets``: per-test mean residuals against σ/√n (χ² test);
+    * ``time_profile``: mean residual at each sampling time across tests (χ² test) — a shared
+      time-shaped misfit (a step, a missing transient) shows here first.
+    Each has a p-value; ``structured`` is True if any p < 0.005.
     """
     m = np.ones(len(residual), bool) if mask is None else mask
-    r, ti = residual[m], data.test_index[m]
+    sig = np.full(len(residual), noise.sigma) if sigma is None else np.asarray(sigma, float)
+    r, ti = residual[m] / sig[m], data.test_index[m]     # standardised residuals
     n = r.size
     s2 = float(r @ r) / max(n - k, 1)
-    f = s2 / noise.sigma ** 2
+    f = s2
     p_var = float(stats.f.sf(f, max(n - k, 1), noise.dof))
     num = den = 0.0
     pairs = 0
@@ -73,13 +106,19 @@ def structure_tests(data: Measurements, residual: np.ndarray, noise: Noise, k: i
         num += float(ri[1:] @ ri[:-1])
         den += float(ri @ ri)
         pairs += ri.size - 1
-        chi2 += ri.size * float(ri.mean()) ** 2 / noise.sigma ** 2
+        chi2 += ri.size * float(ri.mean()) ** 2
         groups += 1
     rho = num / den if den > 0 else 0.0
+    t = data.time_s[m]
+    ut = np.unique(t)
+    bins = np.searchsorted(ut, t) if len(ut) <= 30 else np.searchsorted(np.quantile(t, np.linspace(.1, .9, 9)), t)
+    chi2_t = sum(float((bins == b).sum()) * float(r[bins == b].mean()) ** 2 for b in np.unique(bins))
+    p_time = float(stats.chi2.sf(chi2_t, len(np.unique(bins))))
     p_ac = float(stats.norm.sf(rho * math.sqrt(max(pairs, 1))))
     p_off = float(stats.chi2.sf(chi2, groups))
     tests = {"excess_variance": {"ratio": f, "p": p_var}, "autocorrelation": {"lag1": rho, "p": p_ac},
-             "test_offsets": {"chi2": chi2, "df": groups, "p": p_off}}
+             "test_offsets": {"chi2": chi2, "df": groups, "p": p_off},
+             "time_profile": {"chi2": chi2_t, "df": int(len(np.unique(bins))), "p": p_time}}
     tests["structured"] = any(t["p"] < STRUCTURE_P for t in tests.values() if isinstance(t, dict))
     return tests
 

@@ -1,0 +1,115 @@
+import json
+import time
+from pathlib import Path
+
+import numpy as np
+import pytest
+
+from rollaway.bench.diagnose import diagnose
+from rollaway.bench.effects import CATALOGUE, _USER, load_effect_file
+from rollaway.bench.ladder import fit
+from rollaway.bench.synth import synth
+
+ROOT = Path(__file__).resolve().parents[2]
+PLUGIN = ROOT / "examples" / "bench" / "ratchet_slip_effect.py"
+NOISE_NM = 8.0
+
+
+@pytest.mark.parametrize("hidden", list(CATALOGUE))
+def test_diagnose_names_each_hidden_effect_and_reaches_the_noise(hidden):
+    data = synth([hidden], seed=11, noise_torque_Nm=NOISE_NM, mu_drum=0.37, heat_transfer_W_m2K=34.0)
+    d = diagnose(data)
+    assert d.verdict == hidden, d.summary()
+    assert d.refined.rmse_torque_Nm < 1.25 * NOISE_NM
+    assert d.refined.rmse_torque_Nm <= d.baseline.rmse_torque_Nm
+    assert not d.remaining_structure
+    assert d.candidates[0].effect == hidden and d.candidates[0].delta_bic < -10
+
+
+@pytest.mark.parametrize("seed", [1, 2, 3])
+def test_no_hidden_effect_gives_none(seed):
+    d = diagnose(synth([], seed=seed, noise_torque_Nm=NOISE_NM))
+    assert d.verdict == "none" and d.indistinguishable_from == []
+    assert not d.remaining_structure
+
+
+def test_relative_noise_gives_none_and_still_finds_an_effect():
+    d = diagnose(synth([], seed=4, noise_torque_Nm=0.0, noise_torque_rel=0.015))
+    assert d.verdict == "none"
+    d = diagnose(synth(["lining_creep"], seed=4, noise_torque_Nm=0.0, noise_torque_rel=0.015))
+    assert d.verdict == "lining_creep"
+
+
+def test_effect_outside_the_catalogue_is_not_claimed_and_a_plugin_explains_it():
+    load_effect_file(PLUGIN)
+    try:
+        data = synth(["ratchet_slip"], seed=5, noise_torque_Nm=NOISE_NM)
+        d = diagnose(data, effects=list(CATALOGUE))
+        assert d.verdict == "none" and d.remaining_structure, d.summary()
+        assert any("none of the catalogue" in w or "unknown effect" in w for w in d.evidence)
+        ladder = fit(data, ["ratchet_slip"])
+        errors = [f.rmse_torque_Nm for _, f in ladder.rungs]
+        assert errors[-1] < errors[1] and errors[-1] < 1.25 * NOISE_NM
+        d2 = diagnose(data)              # the plugin joins the candidates once registered
+        assert d2.verdict == "ratchet_slip"
+    finally:
+        _USER.pop("ratchet_slip", None)
+
+
+def test_diagnose_100_rows_whole_catalogue_is_fast():
+    data = synth(["cable_relaxation"], seed=6)
+    assert 90 <= len(data) <= 110
+    t = time.perf_counter()
+    diagnose(data)
+    assert time.perf_counter() - t < 5.0
+
+
+def test_fit_ladder_falls_and_reports_intervals():
+    data = synth(["friction_temperature", "lining_creep"], seed=7)
+    ladder = fit(data, ["friction_temperature", "lining_creep"])
+    e = [f.rmse_torque_Nm for _, f in ladder.rungs]
+    assert e[0] > e[1] > e[2] > e[3]
+    est = ladder.final.estimates["lining_creep.relaxed_fraction"]
+    assert est.ci95[0] < 0.1 < est.ci95[1]
+
+
+def test_cli_diagnose_json_and_report(tmp_path, run_cli):
+    csv = tmp_path / "d.csv"
+    code, _, err = run_cli("synth", "--effect", "installation_gap=gap_m=0.001", "--seed", "3", "--out", csv)
+    assert code == 0, err
+    code, out, err = run_cli("diagnose", csv, "--json", tmp_path / "d.json", "--report", tmp_path / "d.html")
+    assert code == 0, err
+    j = json.loads((tmp_path / "d.json").read_text())
+    assert j["verdict"] == "installation_gap"
+    for key in ("baseline", "candidates", "verdict", "indistinguishable_from", "refined", "remaining_structure"):
+        assert key in j
+    assert {"rmse_torque_Nm", "rmse_temp_C"} <= set(j["baseline"]) and {"rmse_torque_Nm", "rmse_temp_C"} <= set(j["refined"])
+    c = j["candidates"][0]
+    assert {"effect", "rmse_torque_Nm", "rmse_temp_C", "delta_bic", "parameters"} <= set(c)
+    assert [x["delta_bic"] for x in j["candidates"]] == sorted(x["delta_bic"] for x in j["candidates"])
+    assert c["parameters"]["gap_m"]["ci95"][0] < 0.001 < c["parameters"]["gap_m"]["ci95"][1]
+    html = (tmp_path / "d.html").read_text()
+    assert "data:image/png;base64," in html and "http://" not in html and "https://" not in html
+    assert "verdict" in out
+
+
+def test_cli_synth_is_deterministic_and_compare_fit_run(tmp_path, run_cli):
+    a, b = tmp_path / "a.csv", tmp_path / "b.csv"
+    for p in (a, b):
+        assert run_cli("synth", "--effect", "lining_creep", "--seed", "9", "--out", p)[0] == 0
+    assert a.read_text() == b.read_text()
+    code, out, err = run_cli("compare", a, "--report", tmp_path / "c.html")
+    assert code == 0, err
+    assert "overall" in out and "band" in out
+    code, out, err = run_cli("fit", a, "--effect", "lining_creep", "--plot", tmp_path / "f.png",
+                             "--effect-file", PLUGIN)
+    assert code == 0, err
+    assert "baseline + lining_creep" in out and (tmp_path / "f.png").stat().st_size > 1000
+    _USER.pop("ratchet_slip", None)
+
+
+def test_cli_bad_effect_names_exit_2(tmp_path, run_cli):
+    code, _, err = run_cli("synth", "--effect", "lining_crep")
+    assert code == 2 and "did you mean 'lining_creep'" in err
+    code, _, err = run_cli("synth", "--effect", "lining_creep=bogus=1")
+    assert code == 2 and "no parameter 'bogus'" in err
