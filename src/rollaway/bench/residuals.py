@@ -17,7 +17,7 @@ from scipy import stats
 from rollaway.bench.measurements import Measurements
 
 FLEX_BASIS = 4          # 1, x, x², x³ per test
-STRUCTURE_P = 5e-3      # significance of each structure test
+STRUCTURE_P = 1e-3      # significance of each structure test
 CHANNELS = {"torque": ("torque_Nm", "N·m"), "temperature": ("drum_temp_C", "°C")}
 
 
@@ -88,7 +88,7 @@ def structure_tests(data: Measurements, residual: np.ndarray, noise: Noise, k: i
     * ``test_offsets``: per-test mean residuals against σ/√n (χ² test);
     * ``time_profile``: mean residual at each sampling time across tests (χ² test) — a shared
       time-shaped misfit (a step, a missing transient) shows here first.
-    Each has a p-value; ``structured`` is True if any p < 0.005.
+    Each has a p-value; ``structured`` is True if any p < 0.001.
     """
     m = np.ones(len(residual), bool) if mask is None else mask
     sig = np.full(len(residual), noise.sigma) if sigma is None else np.asarray(sigma, float)
