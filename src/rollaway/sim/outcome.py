@@ -24,6 +24,10 @@ The brake **margin** reported is capacity/demand = (frictionloss_RL + frictionlo
 the two rear drums' torque for the sense each wheel is driven (eqs. 17b, 18–21) against the
 analytic demand T_req = m g sin θ R (eq. 23, same total mass as the MuJoCo car).  ``min_margin``
 is its minimum over the simulated time span (up to the end of the run).
+
+``creep_m`` is the largest |travel| before the roll-away while the capacity was ≥ the demand:
+the solver's creep for a held car (< 1 mm per hour); for a tyre skid it includes the first
+centimetres of the slide.
 """
 from __future__ import annotations
 

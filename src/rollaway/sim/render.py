@@ -26,7 +26,7 @@ from rollaway.errors import UserError
 RENDER_SUFFIXES = (".mp4", ".gif", ".png")
 TIMELAPSE_VIDEO_S = 4.0
 REALTIME_BEFORE_S = 2.0
-SIZES = {".mp4": (640, 360), ".png": (960, 540), ".gif": (400, 224)}   # (width, height)
+SIZES = {".mp4": (640, 360), ".png": (960, 540), ".gif": (480, 270)}   # (width, height)
 FPS = {".mp4": 25, ".gif": 10}
 _FONT = "/usr/share/fonts/truetype/dejavu/DejaVuSansMono.ttf"
 _STATUS = {"held": ("HELD", (40, 170, 60)), "brake_slip": ("ROLLING AWAY: brake slips", (220, 50, 40)),
@@ -75,7 +75,7 @@ class _Hud:
         g = ImageDraw.Draw(img, "RGBA")
         w = img.width
         n = len(lines) + 2
-        g.rectangle([0, 0, w, n * self.line + 8], fill=(0, 0, 0, 140))
+        g.rectangle([0, 0, w, n * self.line + 8], fill=(0, 0, 0, 120))
         for i, text in enumerate(lines):
             g.text((6, 4 + i * self.line), text, font=self.font, fill=(255, 255, 255))
         y = 4 + len(lines) * self.line
@@ -85,7 +85,9 @@ class _Hud:
         g.rectangle([6, y + 2, 6 + fill, y + self.line - 2], fill=(60, 170, 230) if margin >= 1 else (220, 50, 40))
         g.line([6 + bar_w // 2, y, 6 + bar_w // 2, y + self.line], fill=(255, 255, 0), width=2)
         g.text((12 + bar_w, y), "capacity / demand", font=self.font, fill=(255, 255, 255))
-        g.text((6, y + self.line), status[0], font=self.font, fill=status[1])
+        tw = int(g.textlength(status[0], font=self.font))
+        g.rectangle([4, y + self.line + 1, 10 + tw, y + 2 * self.line + 2], fill=status[1])
+        g.text((7, y + self.line), status[0], font=self.font, fill=(255, 255, 255))
         return np.asarray(img)
 
 
@@ -109,7 +111,7 @@ def render_run(runner, result, path, size: tuple[int, int] | None = None) -> Pat
                         f"(apt-get install libegl1 or libosmesa6)") from None
     cam = mujoco.MjvCamera()
     cam.type = mujoco.mjtCamera.mjCAMERA_FREE
-    cam.azimuth, cam.elevation, cam.distance = 90.0, -4.0, 10.0
+    cam.azimuth, cam.elevation, cam.distance = 90.0, -4.0, 8.5
     opt = mujoco.MjvOption()
     hud = _Hud(width)
     frames = []
@@ -118,7 +120,7 @@ def render_run(runner, result, path, size: tuple[int, int] | None = None) -> Pat
         data.qpos[:] = tr.qpos[r]
         data.qvel[:] = tr.qvel[r]
         mujoco.mj_forward(model, data)
-        cam.lookat[:] = data.subtree_com[info.car_body]
+        cam.lookat[:] = data.subtree_com[info.car_body] + [0.0, 0.0, 0.7]   # car below the overlay
         renderer.update_scene(data, camera=cam, scene_option=opt)
         k = ctrl.index(t)
         cap = float(ctrl.torque_Nm[(tr.sense[r] > 0).astype(int), k].sum())

@@ -71,7 +71,7 @@ class SimResult:
     outcome: str                        # held | brake_slip | tyre_skid
     rollaway_time_s: float | None       # None if held
     max_displacement_m: float           # max |travel along the slope| over the run
-    creep_m: float                      # max |travel| while still counted as held (integrated spans)
+    creep_m: float                      # max |travel| before roll-away while capacity ≥ demand (integrated spans)
     min_margin: float                   # min over time of capacity/demand (rear axle)
     capacity_Nm_at_rollaway: float | None   # rear-axle brake capacity at the roll-away (None if held)
     demand_Nm_at_rollaway: float | None     # T_req, eq. (23) (None if held)
@@ -92,6 +92,7 @@ class SimResult:
 
 class _Run:
     def __init__(self, scenario: Scenario, mode: str):
+        self.wall0 = time.perf_counter()          # wall time includes building the model
         self.scenario, self.mode = scenario, mode
         self.model, self.info = build_model(scenario)
         self.data = mujoco.MjData(self.model)
@@ -148,7 +149,6 @@ class _Run:
         return k + (int(below[0]) if below.size else k_end - k)
 
     def run(self) -> SimResult:
-        wall0 = time.perf_counter()
         m, d, ctrl, info = self.model, self.data, self.ctrl, self.info
         demand = info.demand_axle_Nm
         k_end = ctrl.index(self.scenario.duration_s)
@@ -172,7 +172,7 @@ class _Run:
                     k = self._skip(k, k_end, demand)
             elif s >= oc.POST_ROLLAWAY_M:
                 break
-        return self._result(rollaway_k, time.perf_counter() - wall0)
+        return self._result(rollaway_k, time.perf_counter() - self.wall0)
 
     def _skip(self, k: int, k_end: int, demand: float) -> int:
         """Jump over the span in which the car provably stays at rest; return the new update index."""
@@ -186,6 +186,11 @@ class _Run:
         d.time = ctrl.time_s[target]
         self._record(ctrl.capacity_Nm(target))
         return target
+
+    def _creep(self, tr: Trace, held_end: int) -> float:
+        """Max |travel| before the roll-away while the brake capacity was ≥ the demand."""
+        ok = tr.capacity_Nm[:held_end].sum(axis=1) >= self.info.demand_axle_Nm
+        return float(np.max(np.abs(tr.displacement_m[:held_end][ok]))) if ok.any() else 0.0
 
     def _result(self, rollaway_k, wall_s) -> SimResult:
         tr = self.trace()
@@ -207,7 +212,7 @@ class _Run:
         return SimResult(
             scenario=sc.name, mode=self.mode, outcome=oc.classify(t_roll is not None, slip or 0.0),
             rollaway_time_s=t_roll, max_displacement_m=float(np.max(np.abs(x))),
-            creep_m=float(np.max(np.abs(x[:held_end]))), min_margin=float(self.min_margin),
+            creep_m=self._creep(tr, held_end), min_margin=float(self.min_margin),
             capacity_Nm_at_rollaway=cap_roll, demand_Nm_at_rollaway=dem_roll, slip_ratio=slip,
             demand_Nm=info.demand_axle_Nm, analytic_time_to_slip_s=None if np.isnan(t_slip) else t_slip,
             tyre_adhesion_margin=float(tyre_adhesion_margin(sc.params, info.grade_pct, info.facing, sc.occupants)),
@@ -219,7 +224,7 @@ def simulate(scenario: Scenario, *, render: str | Path | None = None, mode: str 
     """Simulate *scenario* in MuJoCo; optionally render it to *render* (.mp4, .gif or .png).
 
     ``mode="fast"``: event-driven skip while provably at rest; ``"fixed"``: plain fixed-step.
-    ``wall_time_s`` covers the simulation only, not the rendering.
+    ``wall_time_s`` covers building the model and simulating, not the rendering.
     """
     check_choice(mode, MODES, "simulation mode")
     if render is not None:
