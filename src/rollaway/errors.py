@@ -31,3 +31,22 @@ def check_choice(value: str, choices: Iterable[str], what: str) -> str:
     raise UserError(
         f"unknown {what} '{value}'{suggest(value, choices)}; choose one of: {', '.join(choices)}"
     )
+
+
+def read_toml(path, what: str, example: str) -> dict:
+    """Read a TOML file as a user input: a missing file, bad syntax or bad encoding is a UserError.
+
+    *what* names the kind of file ("scenario file"), *example* where to look for a good one.
+    """
+    import tomllib
+    from pathlib import Path
+
+    path = Path(path)
+    if not path.is_file():
+        raise UserError(f"{what} '{path}' does not exist; check the path ({example})")
+    try:
+        return tomllib.loads(path.read_text(encoding="utf-8"))
+    except tomllib.TOMLDecodeError as exc:
+        raise UserError(f"{path}: not valid TOML ({exc}); fix the syntax at that line") from None
+    except UnicodeDecodeError:
+        raise UserError(f"{path}: not a UTF-8 text file; save it as UTF-8 TOML") from None

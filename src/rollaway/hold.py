@@ -29,31 +29,31 @@ from rollaway.physics import vehicle
 MAX_OCCUPANTS = 5
 
 
+def _reject_bad(values: np.ndarray, bad: np.ndarray, message: str) -> np.ndarray:
+    """Raise UserError with *message* formatted with the first bad value, else return *values*."""
+    if np.any(bad):
+        raise UserError(message.format(np.atleast_1d(values)[np.atleast_1d(bad)][0]))
+    return values
+
+
 def validate_grade(grade_pct: ArrayLike) -> np.ndarray:
     g = np.asarray(grade_pct, float)
-    bad = ~np.isfinite(g) | (g <= -100.0) | (g > 100.0)
-    if np.any(bad):
-        raise UserError(f"grade {np.atleast_1d(g)[np.atleast_1d(bad)][0]:g} % is outside (−100 %, 100 %]; "
-                        f"give the slope in percent rise over run, e.g. 20 for a 20 % grade")
-    return g
+    return _reject_bad(g, ~np.isfinite(g) | (g <= -100.0) | (g > 100.0),
+                       "grade {:g} % is outside (−100 %, 100 %]; give the slope in percent rise over run, "
+                       "e.g. 20 for a 20 % grade")
 
 
 def validate_occupants(occupants: ArrayLike) -> np.ndarray:
     n = np.asarray(occupants, float)
-    bad = ~np.isfinite(n) | (n < 0) | (n > MAX_OCCUPANTS) | (n != np.round(n))
-    if np.any(bad):
-        raise UserError(f"occupants = {np.atleast_1d(n)[np.atleast_1d(bad)][0]:g} is not a whole number "
-                        f"from 0 to {MAX_OCCUPANTS}; give the number of 70 kg occupants")
-    return n
+    return _reject_bad(n, ~np.isfinite(n) | (n < 0) | (n > MAX_OCCUPANTS) | (n != np.round(n)),
+                       "occupants = {:g} is not a whole number from 0 to %d; give the number of 70 kg occupants"
+                       % MAX_OCCUPANTS)
 
 
 def validate_hand_force(hand_force_N: ArrayLike) -> np.ndarray:
     f = np.asarray(hand_force_N, float)
-    bad = ~np.isfinite(f) | (f < 0)
-    if np.any(bad):
-        raise UserError(f"hand force {np.atleast_1d(f)[np.atleast_1d(bad)][0]:g} N is negative or not finite; "
-                        f"give the lever force in newtons, e.g. 400")
-    return f
+    return _reject_bad(f, ~np.isfinite(f) | (f < 0),
+                       "hand force {:g} N is negative or not finite; give the lever force in newtons, e.g. 400")
 
 
 def _effective(grade_pct, direction):

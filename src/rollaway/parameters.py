@@ -16,11 +16,10 @@ from __future__ import annotations
 
 import dataclasses
 import math
-import tomllib
 from dataclasses import dataclass, fields
 from pathlib import Path
 
-from rollaway.errors import UserError, suggest
+from rollaway.errors import UserError, read_toml, suggest
 
 PAPER = "Ishak et al. 2018, Table 1"
 EQ24 = "Ishak et al. 2018, eq. (24) (fit to bench data)"
@@ -141,6 +140,14 @@ class BrakeParameters:
                 changes[key] = _validate_value(key, value, "replace()")
         return dataclasses.replace(self, **changes)
 
+    def with_overrides(self, overrides) -> "BrakeParameters":
+        """A copy with ``(key, value, where)`` overrides applied; ``value=None`` keeps the set's value.
+
+        *where* names the input (a CLI flag, a file key) in the error message of a bad value.
+        """
+        changes = {k: _validate_value(k, v, where) for k, v, where in overrides if v is not None}
+        return dataclasses.replace(self, **changes) if changes else self
+
     def as_dict(self) -> dict[str, float]:
         return {f.name: getattr(self, f.name) for f in fields(self) if f.name != "name"}
 
@@ -187,14 +194,7 @@ def load_parameters(source: str | Path | None = None) -> BrakeParameters:
     if not path.suffix == ".toml" and not path.exists():
         raise UserError(f"unknown parameter set '{text}'{suggest(text, PARAMETER_SETS)}; give a named set "
                         f"({', '.join(PARAMETER_SETS)}) or the path of a .toml file")
-    if not path.is_file():
-        raise UserError(f"parameter file '{path}' does not exist; check the path")
-    try:
-        data = tomllib.loads(path.read_text(encoding="utf-8"))
-    except tomllib.TOMLDecodeError as exc:
-        raise UserError(f"{path}: not valid TOML ({exc}); fix the syntax at that line") from None
-    except UnicodeDecodeError:
-        raise UserError(f"{path}: not a UTF-8 text file; save it as UTF-8 TOML") from None
+    data = read_toml(path, "parameter file", "see 'rollaway params' for the keys")
     return parameters_from_mapping(data, where=str(path))
 
 

@@ -24,11 +24,10 @@ file and the key.
 from __future__ import annotations
 
 import dataclasses
-import tomllib
 from dataclasses import dataclass, field
 from pathlib import Path
 
-from rollaway.errors import UserError, check_choice, suggest
+from rollaway.errors import UserError, check_choice, read_toml, suggest
 from rollaway.hold import MAX_OCCUPANTS
 from rollaway.parameters import BrakeParameters, load_parameters, parameters_from_mapping
 from rollaway.physics.drum import DIRECTIONS
@@ -135,12 +134,7 @@ def scenario_from_mapping(data: dict, where: str = "scenario", base_dir: Path | 
 def load_scenario(path: str | Path) -> Scenario:
     """Read and validate a scenario TOML file."""
     path = Path(path)
-    if not path.is_file():
-        raise UserError(f"scenario file '{path}' does not exist; see scenarios/ for examples")
-    try:
-        data = tomllib.loads(path.read_text(encoding="utf-8"))
-    except tomllib.TOMLDecodeError as exc:
-        raise UserError(f"{path}: not valid TOML ({exc}); fix the syntax at that line") from None
+    data = read_toml(path, "scenario file", "see scenarios/*.toml for examples")
     return scenario_from_mapping(data, where=str(path), base_dir=path.parent)
 
 

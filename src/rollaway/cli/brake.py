@@ -10,7 +10,7 @@ from rollaway.brake import drum_brake
 from rollaway.cli.output import FORMATS, write_table
 from rollaway.errors import UserError, check_choice
 from rollaway.hold import validate_hand_force
-from rollaway.parameters import _validate_value, load_parameters
+from rollaway.parameters import load_parameters
 from rollaway.physics.drum import DIRECTIONS
 
 
@@ -40,15 +40,10 @@ def brake(
     check_choice(fmt, FORMATS, "format")
     check_choice(direction, DIRECTIONS, "direction")
     validate_hand_force(hand_force_N)
-    p = load_parameters(params)
-    changes = {}
-    if mu is not None:
-        changes["mu_drum"] = _validate_value("mu_drum", mu, "--mu")
-    if gap_mm is not None:
-        changes["gap_m"] = _validate_value("gap_m", gap_mm / 1000.0, "--gap-mm (in mm)")
-    if t0_C is not None:
-        changes["initial_drum_temp_C"] = _validate_value("initial_drum_temp_C", t0_C, "--t0-C")
-    p = p.replace(**changes) if changes else p
+    p = load_parameters(params).with_overrides([
+        ("mu_drum", mu, "--mu"),
+        ("gap_m", None if gap_mm is None else gap_mm / 1000.0, "--gap-mm (in m)"),
+        ("initial_drum_temp_C", t0_C, "--t0-C")])
     t = time_grid_s(t_end_s, dt_s)
     series = drum_brake(p, time_s=t, hand_force_N=hand_force_N, direction=direction)
     if bool(np.any(series.self_locked)):

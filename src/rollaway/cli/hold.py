@@ -12,7 +12,7 @@ from rollaway.errors import check_choice
 from rollaway.hold import (analytic_verdict, hold_margin, minimum_hand_force_N, required_torque,
                            tyre_adhesion_margin, validate_grade, validate_hand_force, validate_occupants)
 from rollaway.brake import drum_brake
-from rollaway.parameters import _validate_value, load_parameters
+from rollaway.parameters import load_parameters
 from rollaway.physics.drum import DIRECTIONS
 
 
@@ -38,13 +38,8 @@ def hold(
     validate_grade(grade_pct)
     validate_hand_force(hand_force_N)
     validate_occupants(occupants)
-    p = load_parameters(params)
-    changes = {}
-    for key, value, flag in (("mu_drum", mu, "--mu"), ("initial_drum_temp_C", t0_C, "--t0-C"),
-                             ("tyre_road_mu", tyre_mu, "--tyre-mu")):
-        if value is not None:
-            changes[key] = _validate_value(key, value, flag)
-    p = p.replace(**changes) if changes else p
+    p = load_parameters(params).with_overrides([
+        ("mu_drum", mu, "--mu"), ("initial_drum_temp_C", t0_C, "--t0-C"), ("tyre_road_mu", tyre_mu, "--tyre-mu")])
     t = time_grid_s(duration_s, dt_s)
     margin = hold_margin(p, t, hand_force_N, grade_pct, direction, occupants)
     s = drum_brake(p, time_s=t, hand_force_N=hand_force_N, direction=direction if grade_pct >= 0 else
