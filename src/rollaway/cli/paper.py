@@ -13,7 +13,7 @@ def paper(
     out: Path = typer.Option(Path("renders/paper"), "--out", help="folder for the PNGs"),
     params: Optional[str] = typer.Option(None, "--params", help="parameter set name or TOML file (default: paper)"),
 ) -> None:
-    """Draw the analogues of the paper's Figs. 9–14 as PNGs (cooling, torque vs time, FMVSS check, μ_d, occupants)."""
+    """Draw the analogues of the paper's Figures 9–14 as PNGs: cooling, torque vs time, FMVSS check, μ_d, occupants."""
     from rollaway.errors import UserError
     from rollaway.figures.paper import paper_figures
     p = load_parameters(params)
