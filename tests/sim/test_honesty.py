@@ -83,3 +83,39 @@ def test_tyre_skid_slides_with_locked_wheels(grade, direction, mu):
     assert a_sim == pytest.approx(a_expected, rel=0.05)
     rolled = 0.3 * abs(phi[-1] - phi[0])
     assert rolled < 0.05 * abs(x[-1] - x[0])                  # wheels locked: slip ratio > 0.95
+
+
+def _raw_xml_car(grade, factor):
+    """models/car.xml alone (sleep enabled as committed), tilted through MjSpec, empty car."""
+    from rollaway.sim.model import MODEL_PATH
+    spec = mujoco.MjSpec.from_file(str(MODEL_PATH))
+    th = math.atan(grade / 100)
+    spec.frame("slope").quat = [math.cos(th / 2), 0, math.sin(th / 2), 0]
+    spec.body("car").quat, spec.body("car").pos = [0, 0, 0, 1], [-1.1, 0, 0]     # facing uphill
+    model = spec.compile()
+    data = mujoco.MjData(model)
+    dofs = [model.jnt_dofadr[model.joint(j).id] for j in ("hinge_rl", "hinge_rr")]
+    model.dof_frictionloss[dofs] = factor * 1250 * 9.81 * math.sin(th) * 0.3 / 2
+    return model, data, dofs, np.array([math.cos(th), 0, -math.sin(th)])
+
+
+@pytest.mark.parametrize("grade", [20, 30])
+def test_committed_xml_alone_sleeps_still_and_keeps_the_threshold(grade):
+    model, data, dofs, u = _raw_xml_car(grade, 1.05)
+    mujoco.mj_step(model, data, nstep=3000)
+    assert data.ntree_awake == 0                              # asleep: exactly at rest
+    p = data.qpos[:3].copy()
+    mujoco.mj_step(model, data, nstep=60000)
+    assert abs((data.qpos[:3] - p) @ u) < 1e-9
+    # lowering the brake needs a wake-up (a one-step qfrc_applied write), then it rolls
+    model.dof_frictionloss[dofs] *= 0.995 / 1.05
+    data.qfrc_applied[dofs[0]] = 1e-6
+    mujoco.mj_step(model, data)
+    data.qfrc_applied[:] = 0
+    mujoco.mj_step(model, data, nstep=10000)
+    assert abs((data.qpos[:3] - p) @ u) > 0.05
+    for factor, rolls in ((0.995, True), (1.005, False)):
+        model, data, dofs, u = _raw_xml_car(grade, factor)
+        p0 = data.qpos[:3].copy()
+        mujoco.mj_step(model, data, nstep=10000)
+        assert (abs((data.qpos[:3] - p0) @ u) > 0.05) == rolls

@@ -14,14 +14,17 @@ Everything scenario-dependent is set on the spec, never by editing XML text:
   :class:`rollaway.sim.brake_callback.BrakeController`.
 
 Numerics [assumed, measured — see ``/work/shared/notes/mujoco-findings.md`` and tests/sim]:
-1 ms Euler step, elliptic cone, impratio 100, Newton solver, stiff joint friction
+1 ms Euler step, elliptic cone, impratio 1000, Newton solver, stiff joint friction
 (``solreffriction 0.004 1``, ``solimpfriction 0.9999 0.9999 0.001``) and tyre contacts
 (``solref 0.004 1``, ``solimp 0.99 0.9999 0.001``).  MuJoCo's soft friction lets a held
 wheel creep at v ≈ (1−d)/d · dof_invweight0 · T / b; after compiling we multiply the rear
 hinges' ``dof_invweight0`` by :data:`REAR_INVWEIGHT_SCALE` (it only scales the constraint
 regulariser; :func:`apply_invweight` must be re-applied after any ``mj_setConst``).  That
-brings creep below 1 mm per simulated hour.  MuJoCo sleep (enabled in the XML so the file
-alone holds a car still) is switched off here: the simulator has its own, event-driven skip.
+brings creep below 0.5 mm per simulated hour (measured: 0.31 mm at 20 %, 0.46 mm at 30 %,
+of which most is tyre sliding; impratio 1000 keeps that part small).  MuJoCo sleep
+(enabled in the XML so that the file alone holds a car still) is switched off here by
+default: the simulator has its own event-driven skip, and sleeping trees do not wake when
+``dof_frictionloss`` changes.
 """
 from __future__ import annotations
 
@@ -41,7 +44,7 @@ MODEL_PATH = Path(__file__).resolve().parents[3] / "models" / "car.xml"
 
 WHEEL_MASS_KG = 15.0          # [assumed] one wheel with tyre and drum; counts in the vehicle mass
 WHEEL_WIDTH_M = 0.2           # [assumed] for the wheel inertia only
-REAR_INVWEIGHT_SCALE = 1e-3   # [assumed] measured: creep 0.6 mm/h instead of 61 mm/h at 20 %
+REAR_INVWEIGHT_SCALE = 1e-3   # [assumed] measured: creep 0.3 mm/h instead of ~120 mm/h at 20 %
 CHASSIS_BOX_M = (4.2, 1.7, 1.0)  # [assumed] box whose inertia the chassis gets
 # lateral seat positions, occupants 1..5 (y, +left) [assumed]; rows from MODEL.md
 SEAT_Y_M = (0.4, -0.4, 0.5, -0.5, 0.0)
