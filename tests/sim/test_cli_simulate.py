@@ -62,3 +62,9 @@ def test_bad_value_in_scenario(run_cli, tmp_path):
 
 def test_bad_mode(run_cli):
     _one_line_error(*run_cli("simulate", SCENARIOS / "tyre-skid.toml", "--mode", "turbo"), "turbo")
+
+
+def test_self_locking_shoe_is_a_user_error(run_cli, tmp_path):
+    f = tmp_path / "lock.toml"
+    f.write_text((SCENARIOS / "tyre-skid.toml").read_text() + "mu_drum = 1.5\n")
+    _one_line_error(*run_cli("simulate", f), "self-locks", "mu_drum")

@@ -62,3 +62,11 @@ def test_bad_mode_is_a_user_error():
     from rollaway.errors import UserError
     with pytest.raises(UserError, match="fast"):
         simulate(make_scenario(), mode="quick")
+
+
+def test_flat_road_and_released_brake():
+    flat = simulate(make_scenario(grade_pct=0, hand_force_N=0, duration_s=5))
+    assert flat.outcome == "held" and flat.to_dict()["min_margin"] is None
+    released = simulate(make_scenario(hand_force_N=0, duration_s=5))
+    assert released.outcome == "brake_slip" and released.min_margin == 0.0
+    assert released.capacity_Nm_at_rollaway == 0.0

@@ -90,6 +90,11 @@ class SimResult:
         return {k: (None if isinstance(v, float) and not np.isfinite(v) else v) for k, v in d.items()}
 
 
+def _margin(capacity_Nm: float, demand_Nm: float) -> float:
+    """Brake margin capacity/demand; ∞ on a flat road (no demand; reported as None in JSON)."""
+    return capacity_Nm / demand_Nm if demand_Nm > 0 else np.inf
+
+
 class _Run:
     def __init__(self, scenario: Scenario, mode: str):
         self.wall0 = time.perf_counter()          # wall time includes building the model
@@ -157,7 +162,7 @@ class _Run:
         rollaway_k = None
         while k < k_stop:
             cap = ctrl.update(m, d)
-            margin = (cap[0] + cap[1]) / demand
+            margin = _margin(cap[0] + cap[1], demand)
             if margin < self.min_margin:
                 self.min_margin = margin
             mujoco.mj_step(m, d, nstep=UPDATE_STEPS)
@@ -181,7 +186,7 @@ class _Run:
         if target - k < MIN_SKIP_UPDATES:
             return k
         span = ctrl.torque_Nm[(ctrl.sense > 0).astype(int), k:target].sum(axis=0)
-        self.min_margin = min(self.min_margin, float(span.min()) / demand)
+        self.min_margin = min(self.min_margin, _margin(float(span.min()), demand))
         self.skips.append((float(d.time), float(ctrl.time_s[target])))
         d.time = ctrl.time_s[target]
         self._record(ctrl.capacity_Nm(target))
