@@ -101,7 +101,7 @@ def render_run(runner, result, path, size: tuple[int, int] | None = None) -> Pat
     if suffix == ".png":
         t_key = (min(result.rollaway_time_s + 3.0, result.sim_time_s) if result.rollaway_time_s is not None
                  else result.sim_time_s)
-        times, speed = np.array([t_key]), np.array([1.0])
+        times, speed = np.array([t_key]), np.array([0.0])          # 0: a still picture
     else:
         times, speed = frame_times(result.sim_time_s, result.rollaway_time_s, FPS[suffix])
     try:
@@ -126,7 +126,7 @@ def render_run(runner, result, path, size: tuple[int, int] | None = None) -> Pat
         cap = float(ctrl.torque_Nm[(tr.sense[r] > 0).astype(int), k].sum())
         rolled = result.rollaway_time_s is not None and t >= result.rollaway_time_s
         status = _STATUS[result.outcome if rolled else "held"]
-        play = "real time" if sp <= 1.0 else f"time-lapse x{sp:.0f}"
+        play = "snapshot" if sp == 0 else "real time" if sp <= 1.0 else f"time-lapse x{sp:.0f}"
         lines = [f"{sc.name}: {info.grade_pct:g} % grade, facing {info.facing}, {sc.hand_force_N:g} N",
                  f"t = {t:8.1f} s  ({play})   moved {tr.displacement_m[r] * 100:+.1f} cm",
                  f"drum {ctrl.drum_temp_C[k]:5.1f} °C   brake {cap:6.0f} / demand {info.demand_axle_Nm:.0f} N·m"]
