@@ -60,7 +60,20 @@ def invalid_message(base: Scenario, row) -> str:
 
 
 def in_band(brake_margin, tyre_margin, band) -> np.ndarray:
-    """Near the boundary: brake or tyre margin within [band low, band high]."""
+    """Near the boundary: brake or tyre margin within [band low, band high] (default [0.95, 1.08]).
+
+    Why this band: MuJoCo's brake hold/slip threshold matches the analytic one to < 0.5 %, so
+    far from 1 the analytic verdict stands.  Near 1 the two models differ in what the 1D check
+    cannot see: tyre adhesion, and the coupling of brake and tyres.  Measured with every point
+    simulated (3 647 simulations: the 10 000-point benchmark's [0.9, 1.15] band, and
+    ``scenarios/sweeps/grade-load.toml`` and ``materials.toml`` with ``--simulate all``), every
+    point where MuJoCo's verdict differed from the analytic brake + tyre verdict had its smaller
+    margin within [0.998, 1.03], while its brake margin reached 5.1 when the tyre margin was
+    near 1 — hence a band on *either* margin.  [0.95, 1.08] covers that spread with ≥ 2.5×
+    headroom, more on the hold side (a wrong "holds" is the dangerous error), and keeps a
+    10 000-point sweep under 2 minutes on 2 cores ([0.9, 1.15]: 2.6 minutes).  Widen ``band``
+    in the sweep file for a new vehicle or parameter set until the disagreements stay inside.
+    """
     lo, hi = band
     b, t = np.asarray(brake_margin), np.asarray(tyre_margin)
     return ((b >= lo) & (b <= hi)) | ((t >= lo) & (t <= hi))

@@ -21,7 +21,7 @@ from rollaway.hold import MAX_OCCUPANTS, minimum_hand_force_N, tyre_adhesion_mar
 from rollaway.sweep.analytic import analytic_pass  # noqa: E402
 from rollaway.sweep.spec import AXES, SweepSpec  # noqa: E402
 
-LEVELS = (0.5, 0.75, 0.9, 1.15, 1.5, 2.0, 3.0)
+LEVELS = (0.5, 0.75, 1.5, 2.0, 3.0)    # thin contours, plus the band edges of the sweep
 MARKERS = {"held": ("o", "tab:green", "simulated: held"), "brake_slip": ("X", "tab:red", "simulated: brake slip"),
            "tyre_skid": ("^", "tab:orange", "simulated: tyre skid")}
 REG_HAND_FORCE_N = 400.0
@@ -86,7 +86,7 @@ def _map(table, spec, y_axis, ys, path) -> Path:
         brake, margin = _dense(spec, ref, "grade_pct", xs, y_axis, ys, d)
         m = np.clip(np.nan_to_num(margin, nan=0.0, posinf=10.0), 0, 10)
         ax.contourf(xs, ys, m, levels=[0, 1, 10], colors=["#f4b6b6", "#cdebc5"], alpha=0.8)
-        cs = ax.contour(xs, ys, m, levels=LEVELS, colors="0.35", linewidths=0.7)
+        cs = ax.contour(xs, ys, m, levels=sorted(set(LEVELS) | set(spec.band)), colors="0.35", linewidths=0.7)
         ax.clabel(cs, fmt="%.2g", fontsize=7)
         ax.contour(xs, ys, m, levels=[1.0], colors="k", linewidths=2.5)
         b = np.clip(np.nan_to_num(brake, nan=0.0, posinf=10.0), 0, 10)
