@@ -133,19 +133,18 @@ def design_chart(table, spec, path) -> Path:
     loads = loads or [int(ref["occupants"])]
     p = spec.base.params
     fig, ax = plt.subplots(figsize=(8, 5.5))
-    styles = ["-", "--", ":", "-.", (0, (5, 1)), (0, (3, 1, 1, 1))]
-    for d, colour in (("downhill", "tab:blue"), ("uphill", "tab:red")):
+    for d, cmap, style in (("downhill", plt.cm.Blues, "-"), ("uphill", plt.cm.Reds, "--")):
         if d not in set(table["direction"]):
             continue
         for i, n in enumerate(loads):
+            colour = cmap(0.45 + 0.55 * (i + 1) / len(loads))
             f = minimum_hand_force_N(p, g, d, n, ref["duration_s"], ref["mu_drum"], None, ref["initial_drum_temp_C"])
             tyre = tyre_adhesion_margin(p, g, d, n, ref["tyre_road_mu"])
             f = np.where(tyre >= 1.0, f, np.nan)
-            ax.plot(g, f, color=colour, ls=styles[i % len(styles)], lw=1.6,
-                    label=f"facing {d}, {n} occupant{'s' if n != 1 else ''}")
+            ax.plot(g, f, color=colour, ls=style, lw=1.7, label=f"facing {d}, {n} occupant{'s' if n != 1 else ''}")
             skid = np.flatnonzero(tyre < 1.0)
-            if len(skid):
-                ax.plot(g[skid[0]], f[skid[0] - 1] if skid[0] else 0, "x", color=colour, ms=9, mew=2)
+            if len(skid) and skid[0] > 0:
+                ax.plot(g[skid[0] - 1], f[skid[0] - 1], "x", color=colour, ms=9, mew=2)
     ax.axhline(REG_HAND_FORCE_N, color="k", lw=1.2)
     ax.text(g[0], REG_HAND_FORCE_N * 1.02, " 400 N hand-force limit (FMVSS 135, UN R13-H)", fontsize=8, va="bottom")
     ax.axvline(REG_GRADE_PCT, color="k", lw=0.8, ls=":")
