@@ -1,5 +1,4 @@
 """Running sweeps with real MuJoCo: band selection, verdicts, failures, Dask = local."""
-import numpy as np
 import pandas as pd
 import pytest
 
@@ -85,16 +84,17 @@ def test_plots_written(band_run):
 
 def test_failing_points_are_recorded_and_the_others_continue(tmp_path):
     points = [{"grade_pct": g, "direction": "uphill", "hand_force_N": 250} for g in (10, 20, 40, 45)]
-    points += [{"occupants": 7}, {"grade_pct": 150}]                 # bad input
+    points += [{"occupants": 7}, {"grade_pct": 150}, {"occupants": 2.5}]     # bad input
     spec = SweepSpec(source="t", base=BASE, points=expand(BASE, None, points), simulate="all")
     for workers in (1, 2):
         res = run_sweep(spec, tmp_path / f"w{workers}", workers=workers, progress=False, plots=False,
                         simulate_fn=explode_on_steep)
         t = res.table.set_index("grade_pct", drop=False)
-        assert len(t) == 6
+        assert len(t) == 7
         err = res.table["error"]
         assert err.str.contains("simulation diverged").sum() == 2
-        assert err.str.contains("bad input").sum() == 2
+        assert err.str.contains("bad input").sum() == 3
+        assert err.str.contains("2.5 is not a whole number").sum() == 1
         assert res.table.loc[err.str.contains("occupants"), "error"].str.contains("0 to 5").all()
         good = res.table[err == ""]
         assert len(good) == 2 and good["simulated"].all() and (good["sim_outcome"] != "").all()
@@ -107,3 +107,23 @@ def test_local_cluster_gives_the_same_table_as_local_processes(tmp_path, band_ru
         res = run_sweep(spec, tmp_path / "dask", dask_address=cluster.scheduler_address, progress=False, plots=False)
     assert res.n_run == local.n_to_simulate > 0
     pd.testing.assert_frame_equal(res.table.drop(columns=list(TIMING)), local.table.drop(columns=list(TIMING)))
+
+
+def test_retry_failed_reruns_only_the_failed_points(tmp_path):
+    points = [{"grade_pct": g, "direction": "uphill", "hand_force_N": 250, "duration_s": 30} for g in (10, 20, 40)]
+    spec = SweepSpec(source="t", base=BASE, points=expand(BASE, None, points), simulate="all")
+    first = run_sweep(spec, tmp_path, workers=1, progress=False, plots=False, simulate_fn=explode_on_steep)
+    assert first.n_failed == 1 and first.n_run == 3
+    again = run_sweep(spec, tmp_path, workers=1, progress=False, plots=False)
+    assert again.n_run == 0 and again.n_failed == 1            # a recorded failure is a finished point
+    retry = run_sweep(spec, tmp_path, workers=1, progress=False, plots=False, retry_failed=True)
+    assert retry.n_run == 1 and retry.n_failed == 0 and retry.table["simulated"].all()
+    ids = [line for line in (tmp_path / "journal.jsonl").read_text().splitlines()]
+    assert len(ids) == 3
+
+
+def test_simulate_none_is_analytic_only(tmp_path):
+    spec = grid_spec(BASE, {"grade_pct": [10, 30, 45]}, simulate="none")
+    res = run_sweep(spec, tmp_path, progress=False, plots=False)
+    assert res.n_to_simulate == 0 and not res.table["simulated"].any()
+    assert (res.table["outcome"] == res.table["analytic_outcome"]).all()

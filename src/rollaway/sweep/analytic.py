@@ -19,7 +19,8 @@ import numpy as np
 import pandas as pd
 
 from rollaway.errors import UserError
-from rollaway.hold import MAX_OCCUPANTS, hold_margin, minimum_hand_force_N, time_to_slip_s, tyre_adhesion_margin
+from rollaway.hold import (MAX_OCCUPANTS, hold_margin, minimum_hand_force_N, time_to_slip_s, tyre_adhesion_margin,
+                           validate_occupants)
 from rollaway.parameters import SPEC_BY_NAME
 from rollaway.physics.drum import DIRECTIONS
 from rollaway.scenario import Scenario
@@ -54,6 +55,7 @@ def invalid_message(base: Scenario, row) -> str:
     """The scenario validation's own message for a point that failed :func:`valid_mask`."""
     try:
         base.replace(**point_changes(row))
+        validate_occupants(row["occupants"])      # whole numbers: checked by the model, not the scenario
     except (UserError, ValueError, TypeError) as exc:
         return f"bad input: {exc}"
     return "bad input: value outside the model's range"
