@@ -37,7 +37,7 @@ def analytic_rows(preset_names, params) -> dict[str, list]:
 
 def check(
     targets: Optional[List[str]] = typer.Argument(
-        None, metavar="[SCENARIO]...",
+        None, metavar="SCENARIO",
         help="regulation presets (fmvss135, unr13h, paper30, or 'all') and, without --analytic, scenario "
              "TOML files; default: fmvss135 unr13h"),
     analytic: bool = typer.Option(False, "--analytic", help="use the paper's analytic check (no simulation)"),

@@ -29,7 +29,7 @@ def _summary(res) -> None:
 
 
 def sweep(
-    spec_path: str = typer.Argument(..., metavar="SWEEP.toml", help="sweep spec (see scenarios/sweeps/)"),
+    spec_path: str = typer.Argument(..., metavar="SWEEP_TOML", help="sweep spec (see scenarios/sweeps/)"),
     out: Optional[str] = typer.Option(None, "--out", help="output folder (default: ./<spec name>-results); "
                                       "rerun with the same folder to continue an interrupted sweep"),
     workers: Optional[int] = typer.Option(None, "--workers", help="local worker processes (default: every core)"),
