@@ -1,7 +1,17 @@
 #!/usr/bin/env bash
-# Quick start: install everything, then run the main job on the bundled defaults.
+# Quick start: install everything (system libraries included), then run the main job on the bundled defaults.
 set -euo pipefail
 cd "$(dirname "$0")"
 bash scripts/install.sh
-rollaway check --analytic
+export MUJOCO_GL="${MUJOCO_GL:-egl}"
+echo; echo "== 1. compliance gate: FMVSS 135 + UN R13-H simulated in MuJoCo"
+rollaway check
+echo; echo "== 2. the paper's analytic check of every preset (exit 1 means a case fails: read its reason)"
+rollaway check --analytic all || echo "[quickstart] rollaway check --analytic all exited $?: a case fails, see the reason column"
+echo; echo "== 3. hot parking: the drum cools and the brake lets go"
+rollaway simulate scenarios/hot-parking-rollaway.toml --render renders/quickstart/hot-parking-rollaway.mp4 \
+  --json renders/quickstart/hot-parking-rollaway.json
+echo; echo "== 4. sweep: grade x occupants x hand force, MuJoCo on the hold/roll boundary"
+rollaway sweep scenarios/sweeps/grade-load.toml --out out/grade-load --quiet
+echo; echo "== 5. the paper's Figures 9-14"
 rollaway paper

@@ -19,6 +19,8 @@ from dataclasses import dataclass, field
 
 import numpy as np
 
+from rollaway.jsonsafe import to_jsonable
+
 from rollaway.bench.calibrate import FitResult, calibrate, evaluate
 from rollaway.bench.effects import available_effects, get_effect
 from rollaway.bench.measurements import Measurements
@@ -76,7 +78,7 @@ class Diagnosis:
                 "evidence": self.evidence}
 
     def to_json(self, path=None) -> str:
-        text = json.dumps(_clean(self.as_dict()), indent=2)
+        text = json.dumps(to_jsonable(self.as_dict()), indent=2)
         if path is not None:
             with open(path, "w", encoding="utf-8") as fh:
                 fh.write(text + "\n")
@@ -106,20 +108,6 @@ class Diagnosis:
 
 def _f(x):
     return "–" if x is None else f"{x:.1f}"
-
-
-def _clean(o):
-    if isinstance(o, dict):
-        return {k: _clean(v) for k, v in o.items()}
-    if isinstance(o, (list, tuple)):
-        return [_clean(v) for v in o]
-    if isinstance(o, (float, np.floating)):
-        return None if not math.isfinite(o) else float(o)
-    if isinstance(o, (np.integer,)):
-        return int(o)
-    if isinstance(o, np.bool_):
-        return bool(o)
-    return o
 
 
 def channel_noise(data: Measurements, fit: FitResult) -> tuple[Noise, Noise]:

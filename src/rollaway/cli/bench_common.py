@@ -21,3 +21,34 @@ def parse_effects(specs) -> dict[str, dict[str, float]]:
             raise UserError(f"--effect {name} is given twice; give each effect once")
         out[name] = values
     return out
+
+
+def load_data(path):
+    """Load a measurement CSV (validated) and print its notes on stderr."""
+    import typer
+
+    from rollaway.bench.measurements import load_measurements
+    data = load_measurements(path)
+    for note in data.notes:
+        typer.echo(f"note: {note}", err=True)
+    return data
+
+
+def write_outputs(result, *, report=None, json_out=None, plot=None) -> None:
+    """Print *result*'s summary, then write the HTML report, JSON and plot the user asked for."""
+    import json
+
+    import typer
+
+    from rollaway.jsonsafe import to_jsonable
+    typer.echo(result.summary())
+    if plot:
+        result.plot(plot)
+        typer.echo(f"plot: {plot}")
+    if report:
+        result.report(report)
+        typer.echo(f"report: {report}")
+    if json_out:
+        with open(json_out, "w", encoding="utf-8") as fh:
+            json.dump(to_jsonable(result.as_dict()), fh, indent=2)
+        typer.echo(f"json: {json_out}")

@@ -7,6 +7,7 @@ import numpy as np
 import typer
 
 from rollaway.brake import drum_brake
+from rollaway.cli import options as opt
 from rollaway.cli.output import FORMATS, write_table
 from rollaway.errors import UserError, check_choice
 from rollaway.hold import validate_hand_force
@@ -27,14 +28,14 @@ def time_grid_s(t_end_s: float, dt_s: float) -> np.ndarray:
 
 def brake(
     hand_force_N: float = typer.Option(..., "--hand-force-N", help="force on the hand lever [N], e.g. 250"),
-    direction: str = typer.Option("downhill", "--direction", help="vehicle facing 'downhill' or 'uphill'"),
+    direction: str = opt.DIRECTION,
     t_end_s: float = typer.Option(3600.0, "--t-end-s", help="end of the series [s]"),
-    dt_s: float = typer.Option(600.0, "--dt-s", help="time step of the printed series [s]"),
-    mu: Optional[float] = typer.Option(None, "--mu", help="shoe/drum friction μ_d [–] (default: the set's, 0.4)"),
+    dt_s: float = opt.DT_S,
+    mu: Optional[float] = opt.MU_DRUM,
     gap_mm: Optional[float] = typer.Option(None, "--gap-mm", help="installation gap [mm]; > 0 selects eq. 16b"),
-    t0_C: Optional[float] = typer.Option(None, "--t0-C", help="drum temperature when the lever is applied [°C]"),
-    params: Optional[str] = typer.Option(None, "--params", help="parameter set name or TOML file (default: paper)"),
-    fmt: str = typer.Option("table", "--format", help="csv | json | table"),
+    t0_C: Optional[float] = opt.T0_C,
+    params: Optional[str] = opt.PARAMS,
+    fmt: str = opt.FORMAT,
 ) -> None:
     """Print the drum temperature, normal force and torque of ONE drum over time (paper eqs. 10, 16, 17b, 24)."""
     check_choice(fmt, FORMATS, "format")

@@ -1,12 +1,11 @@
 """``rollaway compare``: the model against bench measurements, per test and overall, and where it fails."""
 from __future__ import annotations
 
-import json
 from typing import List, Optional
 
 import typer
 
-from rollaway.cli.bench_common import load_plugins, parse_effects
+from rollaway.cli.bench_common import load_data, load_plugins, parse_effects, write_outputs
 
 
 def compare(
@@ -23,22 +22,11 @@ def compare(
     """Errors of the model (paper defaults unless --calibrate) on both channels, per test and overall:
     RMSE, bias, worst error; residual trends and the tests/time ranges outside the noise band."""
     from rollaway.bench.compare import compare as run
-    from rollaway.bench.diagnose import _clean
-    from rollaway.bench.measurements import load_measurements
 
     load_plugins(effect_file)
     effects = parse_effects(effect)
-    d = load_measurements(data)
-    for note in d.notes:
-        typer.echo(f"note: {note}", err=True)
-    cmp = run(d, params, effects, calibrated=calibrated)
-    typer.echo(cmp.summary())
-    if report:
-        cmp.report(report)
-        typer.echo(f"report: {report}")
-    if json_out:
-        with open(json_out, "w", encoding="utf-8") as fh:
-            json.dump(_clean(cmp.as_dict()), fh, indent=2)
+    cmp = run(load_data(data), params, effects, calibrated=calibrated)
+    write_outputs(cmp, report=report, json_out=json_out)
 
 
 def register(app: typer.Typer) -> None:

@@ -5,7 +5,7 @@ from typing import List, Optional
 
 import typer
 
-from rollaway.cli.bench_common import load_plugins
+from rollaway.cli.bench_common import load_data, load_plugins, write_outputs
 
 
 def diagnose(
@@ -18,20 +18,10 @@ def diagnose(
     """Calibrate μ_d and h, fit every catalogue effect jointly, rank by BIC and leave-one-test-out
     cross-validation, and say which effect is missing (or 'none') with the evidence."""
     from rollaway.bench.diagnose import diagnose as run
-    from rollaway.bench.measurements import load_measurements
 
     load_plugins(effect_file)
-    d = load_measurements(data)
-    for note in d.notes:
-        typer.echo(f"note: {note}", err=True)
-    diag = run(d, params)
-    typer.echo(diag.summary())
-    if json_out:
-        diag.to_json(json_out)
-        typer.echo(f"json: {json_out}")
-    if report:
-        diag.report(report)
-        typer.echo(f"report: {report}")
+    diag = run(load_data(data), params)
+    write_outputs(diag, report=report, json_out=json_out)
 
 
 def register(app: typer.Typer) -> None:

@@ -1,12 +1,11 @@
 """``rollaway fit``: refit with effects added and watch the error fall (the error ladder)."""
 from __future__ import annotations
 
-import json
 from typing import List, Optional
 
 import typer
 
-from rollaway.cli.bench_common import load_plugins, parse_effects
+from rollaway.cli.bench_common import load_data, load_plugins, parse_effects, write_outputs
 
 
 def fit(
@@ -21,28 +20,14 @@ def fit(
 ) -> None:
     """Error ladder: paper defaults → calibrated baseline → + each effect (each rung calibrated), with the
     fitted parameters, 95 % intervals and bound warnings."""
-    from rollaway.bench.diagnose import _clean
     from rollaway.bench.ladder import fit as run
-    from rollaway.bench.measurements import load_measurements
 
     load_plugins(effect_file)
     effects = parse_effects(effect)
-    d = load_measurements(data)
-    for note in d.notes:
-        typer.echo(f"note: {note}", err=True)
+    d = load_data(data)
     start = {f"{n}.{k}": v for n, vals in effects.items() for k, v in vals.items()}
     ladder = run(d, list(effects), params, start=start)
-    typer.echo(ladder.summary())
-    if plot:
-        ladder.plot(plot)
-        typer.echo(f"plot: {plot}")
-    if report:
-        ladder.report(report)
-        typer.echo(f"report: {report}")
-    if json_out:
-        with open(json_out, "w", encoding="utf-8") as fh:
-            json.dump(_clean(ladder.as_dict()), fh, indent=2)
-
+    write_outputs(ladder, report=report, json_out=json_out, plot=plot)
 
 def register(app: typer.Typer) -> None:
     app.command("fit")(fit)

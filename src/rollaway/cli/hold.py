@@ -7,6 +7,7 @@ import numpy as np
 import typer
 
 from rollaway.cli.brake import time_grid_s
+from rollaway.cli import options as opt
 from rollaway.cli.output import FORMATS, write_table
 from rollaway.errors import check_choice
 from rollaway.hold import (analytic_verdict, hold_margin, minimum_hand_force_N, required_torque,
@@ -19,15 +20,15 @@ from rollaway.physics.drum import DIRECTIONS
 def hold(
     grade_pct: float = typer.Option(..., "--grade-pct", help="road grade [%], e.g. 20 (negative flips the facing)"),
     hand_force_N: float = typer.Option(..., "--hand-force-N", help="force on the hand lever [N]"),
-    direction: str = typer.Option("downhill", "--direction", help="vehicle facing 'downhill' or 'uphill'"),
+    direction: str = opt.DIRECTION,
     occupants: int = typer.Option(1, "--occupants", help="number of 70 kg occupants, 0–5"),
     duration_s: float = typer.Option(3600.0, "--duration-s", help="how long the car must stay parked [s]"),
-    dt_s: float = typer.Option(600.0, "--dt-s", help="time step of the printed series [s]"),
-    mu: Optional[float] = typer.Option(None, "--mu", help="shoe/drum friction μ_d (default: the set's)"),
-    t0_C: Optional[float] = typer.Option(None, "--t0-C", help="drum temperature when the lever is applied [°C]"),
+    dt_s: float = opt.DT_S,
+    mu: Optional[float] = opt.MU_DRUM,
+    t0_C: Optional[float] = opt.T0_C,
     tyre_mu: Optional[float] = typer.Option(None, "--tyre-mu", help="tyre–road friction μ_r (default: the set's)"),
-    params: Optional[str] = typer.Option(None, "--params", help="parameter set name or TOML file"),
-    fmt: str = typer.Option("table", "--format", help="csv | json | table"),
+    params: Optional[str] = opt.PARAMS,
+    fmt: str = opt.FORMAT,
 ) -> int:
     """Analytic hold check of one parked car: margin over time, slip time, tyre margin, least hand force.
 

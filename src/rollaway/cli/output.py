@@ -7,6 +7,7 @@ import sys
 from collections.abc import Mapping, Sequence
 
 from rollaway.errors import check_choice
+from rollaway.jsonsafe import to_jsonable
 
 FORMATS = ("csv", "json", "table")
 
@@ -29,9 +30,7 @@ def write_table(columns: Mapping[str, Sequence], fmt: str = "table", out=None, p
             out.write(",".join(_fmt(float(v) if isinstance(v, (int, float)) and not isinstance(v, bool) else v)
                                for v in r) + "\n")
     elif fmt == "json":
-        recs = [{n: (None if isinstance(v, float) and not math.isfinite(v) else v) for n, v in zip(names, r)}
-                for r in rows]
-        json.dump(recs, out, indent=1, default=float)
+        json.dump(to_jsonable([dict(zip(names, r)) for r in rows]), out, indent=1)
         out.write("\n")
     else:
         def cell(v):

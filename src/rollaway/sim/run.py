@@ -32,6 +32,7 @@ from pathlib import Path
 import mujoco
 import numpy as np
 
+from rollaway.jsonsafe import to_jsonable
 from rollaway.hold import time_to_slip_s, tyre_adhesion_margin
 from rollaway.errors import check_choice
 from rollaway.scenario import Scenario
@@ -87,7 +88,7 @@ class SimResult:
 
     def to_dict(self) -> dict:
         d = {f.name: getattr(self, f.name) for f in fields(self) if f.name != "trace"}
-        return {k: (None if isinstance(v, float) and not np.isfinite(v) else v) for k, v in d.items()}
+        return to_jsonable(d)
 
 
 def _margin(capacity_Nm: float, demand_Nm: float) -> float:

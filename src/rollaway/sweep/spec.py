@@ -26,14 +26,13 @@ from __future__ import annotations
 import hashlib
 import json
 import math
-import tomllib
 from dataclasses import dataclass
 from pathlib import Path
 
 import numpy as np
 import pandas as pd
 
-from rollaway.errors import UserError, check_choice, suggest
+from rollaway.errors import UserError, check_choice, read_toml, suggest
 from rollaway.physics.drum import DIRECTIONS
 from rollaway.regulations import PRESETS
 from rollaway.scenario import Scenario, load_scenario, preset_scenarios
@@ -247,14 +246,7 @@ def spec_from_mapping(data: dict, where: str, base_dir: Path) -> SweepSpec:
 def load_sweep(path: str | Path) -> SweepSpec:
     """Read and validate a SWEEP.toml file."""
     path = Path(path)
-    if not path.is_file():
-        raise UserError(f"sweep file '{path}' does not exist; see scenarios/sweeps/ for examples")
-    try:
-        data = tomllib.loads(path.read_text(encoding="utf-8"))
-    except tomllib.TOMLDecodeError as exc:
-        raise UserError(f"{path}: not valid TOML ({exc}); fix the syntax at that line") from None
-    except UnicodeDecodeError:
-        raise UserError(f"{path}: not a UTF-8 text file; save it as UTF-8 TOML") from None
+    data = read_toml(path, "sweep file", "see scenarios/sweeps/ for examples")
     return spec_from_mapping(data, str(path), path.parent)
 
 
