@@ -16,5 +16,12 @@ if [ ${#need[@]} -gt 0 ]; then
   fi
 fi
 echo "[install] pip install -e .[test]"
-python -m pip install -q --disable-pip-version-check --root-user-action=ignore -e '.[test]'
+# pip's output is shown without its notes about local index folders configured on this kind of
+# machine but absent (harmless); every real warning and error is kept.
+log=$(mktemp)
+status=0
+python -m pip install -q --disable-pip-version-check --root-user-action=ignore -e '.[test]' >"$log" 2>&1 || status=$?
+grep -v "is ignored: it is neither a file nor a directory" "$log" || true
+rm -f "$log"
+[ "$status" = 0 ] || { echo "[install] pip install failed (exit $status)" >&2; exit "$status"; }
 echo "[install] done: $(python -c 'import mujoco, rollaway; print("mujoco", mujoco.__version__, "rollaway", rollaway.__version__)')"

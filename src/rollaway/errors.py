@@ -50,3 +50,17 @@ def read_toml(path, what: str, example: str) -> dict:
         raise UserError(f"{path}: not valid TOML ({exc}); fix the syntax at that line") from None
     except UnicodeDecodeError:
         raise UserError(f"{path}: not a UTF-8 text file; save it as UTF-8 TOML") from None
+
+
+def ensure_parent_dir(path, flag: str):
+    """Create the folder an output file goes into; UserError if a file stands in the way."""
+    from pathlib import Path
+
+    p = Path(path)
+    try:
+        p.parent.mkdir(parents=True, exist_ok=True)
+    except (FileExistsError, NotADirectoryError):
+        raise UserError(f"{flag} {path}: '{p.parent}' is a file, not a folder; choose another path") from None
+    except PermissionError:
+        raise UserError(f"{flag} {path}: no permission to create '{p.parent}'; choose a writable folder") from None
+    return p

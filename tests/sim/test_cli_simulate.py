@@ -34,14 +34,23 @@ def test_bad_render_extension(run_cli, tmp_path):
     _one_line_error(*run_cli("simulate", SCENARIOS / "tyre-skid.toml", "--render", tmp_path / "x.avi"), ".avi", ".mp4")
 
 
-def test_render_into_missing_directory(run_cli, tmp_path):
-    _one_line_error(*run_cli("simulate", SCENARIOS / "tyre-skid.toml", "--render", tmp_path / "no" / "x.gif"),
-                    "does not exist")
+def test_outputs_into_missing_folders_are_created(run_cli, tmp_path):
+    code, out, err = run_cli("simulate", SCENARIOS / "tyre-skid.toml", "--render", tmp_path / "a" / "x.png",
+                             "--json", tmp_path / "b" / "c" / "x.json")
+    assert code == 0, err
+    assert (tmp_path / "a" / "x.png").stat().st_size > 1000 and (tmp_path / "b" / "c" / "x.json").is_file()
 
 
-def test_json_into_missing_directory(run_cli, tmp_path):
-    _one_line_error(*run_cli("simulate", SCENARIOS / "tyre-skid.toml", "--json", tmp_path / "no" / "x.json"),
-                    "does not exist")
+def test_render_under_a_file(run_cli, tmp_path):
+    (tmp_path / "f").write_text("")
+    _one_line_error(*run_cli("simulate", SCENARIOS / "tyre-skid.toml", "--render", tmp_path / "f" / "x.gif"),
+                    "is a file, not a folder")
+
+
+def test_json_under_a_file(run_cli, tmp_path):
+    (tmp_path / "f").write_text("")
+    _one_line_error(*run_cli("simulate", SCENARIOS / "tyre-skid.toml", "--json", tmp_path / "f" / "x.json"),
+                    "is a file, not a folder")
 
 
 def test_missing_scenario_file(run_cli, tmp_path):

@@ -48,6 +48,11 @@ def main(argv: list[str] | None = None) -> int:
     except UserError as exc:
         print(f"{_command_path(args)}: error: {exc}", file=sys.stderr)
         return 2
+    except OSError as exc:  # a path the user gave cannot be read or written
+        where = f": {exc.filename}" if getattr(exc, "filename", None) else ""
+        print(f"{_command_path(args)}: error: {exc.strerror or exc}{where}; check the path and its permissions",
+              file=sys.stderr)
+        return 2
     except (typer.Abort, KeyboardInterrupt):
         print("interrupted", file=sys.stderr)
         return 130

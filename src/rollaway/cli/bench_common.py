@@ -34,6 +34,14 @@ def load_data(path):
     return data
 
 
+def prepare_outputs(**paths) -> None:
+    """Create the folders of the output files the user asked for, before any work (flag name → path)."""
+    from rollaway.errors import ensure_parent_dir
+    for flag, path in paths.items():
+        if path:
+            ensure_parent_dir(path, "--" + flag.replace("_out", "").replace("_", "-"))
+
+
 def write_outputs(result, *, report=None, json_out=None, plot=None) -> None:
     """Print *result*'s summary, then write the HTML report, JSON and plot the user asked for."""
     import json

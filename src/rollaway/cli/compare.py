@@ -5,7 +5,7 @@ from typing import List, Optional
 
 import typer
 
-from rollaway.cli.bench_common import load_data, load_plugins, parse_effects, write_outputs
+from rollaway.cli.bench_common import load_data, load_plugins, prepare_outputs, parse_effects, write_outputs
 
 
 def compare(
@@ -23,6 +23,7 @@ def compare(
     RMSE, bias, worst error; residual trends and the tests/time ranges outside the noise band."""
     from rollaway.bench.compare import compare as run
 
+    prepare_outputs(report=report, json_out=json_out)
     load_plugins(effect_file)
     effects = parse_effects(effect)
     cmp = run(load_data(data), params, effects, calibrated=calibrated)

@@ -5,7 +5,7 @@ from typing import List, Optional
 
 import typer
 
-from rollaway.cli.bench_common import load_data, load_plugins, write_outputs
+from rollaway.cli.bench_common import load_data, load_plugins, prepare_outputs, write_outputs
 
 
 def diagnose(
@@ -19,6 +19,7 @@ def diagnose(
     cross-validation, and say which effect is missing (or 'none') with the evidence."""
     from rollaway.bench.diagnose import diagnose as run
 
+    prepare_outputs(report=report, json_out=json_out)
     load_plugins(effect_file)
     diag = run(load_data(data), params)
     write_outputs(diag, report=report, json_out=json_out)

@@ -8,7 +8,7 @@ from typing import Optional
 import typer
 
 from rollaway.cli.output import write_table
-from rollaway.errors import UserError, check_choice
+from rollaway.errors import check_choice, ensure_parent_dir
 
 _LABELS = (
     ("outcome", "outcome", ""), ("rollaway_time_s", "roll-away time", "s"),
@@ -46,8 +46,8 @@ def simulate(
     check_choice(mode, MODES, "--mode")
     if render is not None:
         check_render_path(render)
-    if json_file is not None and not Path(json_file).resolve().parent.is_dir():
-        raise UserError(f"--json {json_file}: directory '{Path(json_file).parent}' does not exist; create it first")
+    if json_file is not None:
+        ensure_parent_dir(json_file, "--json")
     scenario = load_scenario(scenario_file)
     result = run_sim(scenario, render=render, mode=mode)
     d = result.to_dict()

@@ -7,6 +7,7 @@ from typing import List, Optional
 import typer
 
 from rollaway.cli.bench_common import load_plugins, parse_effects
+from rollaway.errors import ensure_parent_dir
 
 
 def synth(
@@ -35,6 +36,7 @@ def synth(
                hand_forces_N=tuple(hand_force_N) or DEFAULT_HAND_FORCES_N, initial_temp_C=t0_C, dt_s=dt_s,
                duration_s=duration_s)
     if out:
+        ensure_parent_dir(out, "--out")
         data.to_csv(out)
         typer.echo(f"wrote {len(data)} rows, {data.n_tests} tests to {out}", err=True)
     else:

@@ -21,7 +21,7 @@ from pathlib import Path
 import mujoco
 import numpy as np
 
-from rollaway.errors import UserError
+from rollaway.errors import UserError, ensure_parent_dir
 
 RENDER_SUFFIXES = (".mp4", ".gif", ".png")
 TIMELAPSE_VIDEO_S = 4.0
@@ -34,14 +34,12 @@ _STATUS = {"held": ("HELD", (40, 170, 60)), "brake_slip": ("ROLLING AWAY: brake 
 
 
 def check_render_path(path) -> Path:
-    """Validate an output path: known suffix, existing directory (UserError otherwise)."""
+    """Validate an output path: known suffix; its folder is created (UserError if it cannot be)."""
     p = Path(path)
     if p.suffix.lower() not in RENDER_SUFFIXES:
         raise UserError(f"--render {path}: unknown file type '{p.suffix or '(none)'}'; "
                         f"use one of {', '.join(RENDER_SUFFIXES)}")
-    if not p.resolve().parent.is_dir():
-        raise UserError(f"--render {path}: directory '{p.parent}' does not exist; create it first")
-    return p
+    return ensure_parent_dir(p, "--render")
 
 
 def frame_times(t_end_s: float, rollaway_s: float | None, fps: float) -> tuple[np.ndarray, np.ndarray]:
