@@ -32,14 +32,6 @@ def test_check_bad_input(run_cli, args, needle):
     assert code == 2 and needle in err and "Traceback" not in err
 
 
-def test_paper_figures(run_cli, tmp_path):
-    code, out, err = run_cli("paper", "--out", tmp_path / "fig")
-    assert code == 0, err
-    pngs = sorted(p.name for p in (tmp_path / "fig").glob("*.png"))
-    assert len(pngs) == 6 and pngs[0] == "fig09_temperature.png"
-    assert all((tmp_path / "fig" / n).stat().st_size > 10_000 for n in pngs)
-
-
 def test_params_lists_assumed(run_cli):
     code, out, _ = run_cli("params", "--format", "csv")
     assert code == 0

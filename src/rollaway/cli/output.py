@@ -35,7 +35,7 @@ def write_table(columns: Mapping[str, Sequence], fmt: str = "table", out=None, p
     else:
         def cell(v):
             if isinstance(v, float):
-                return f"{v:.{precision}g}"
+                return "-" if math.isnan(v) else f"{v:.{precision}g}"
             return str(v)
         text = [[cell(v) for v in r] for r in rows]
         widths = [max([len(n)] + [len(t[i]) for t in text]) for i, n in enumerate(names)]
