@@ -119,3 +119,13 @@ def test_committed_xml_alone_sleeps_still_and_keeps_the_threshold(grade):
         p0 = data.qpos[:3].copy()
         mujoco.mj_step(model, data, nstep=10000)
         assert (abs((data.qpos[:3] - p0) @ u) > 0.05) == rolls
+
+
+@pytest.mark.parametrize("grade, direction, occupants", [(30, "downhill", 1), (20, "downhill", 5), (30, "uphill", 1)])
+def test_tyre_skid_threshold_within_half_percent(grade, direction, occupants):
+    """The simulated tyre-adhesion threshold matches μ_r·N_r = m g sin θ (static slope balance) to ±0.5 %."""
+    from rollaway.hold import tyre_adhesion_margin
+    s = make_scenario(grade_pct=grade, direction=direction, occupants=occupants, hand_force_N=445, duration_s=60)
+    crit = s.tyre_road_mu / float(tyre_adhesion_margin(s.params, grade, direction, occupants))
+    assert simulate(s.replace(tyre_road_mu=crit * 0.995)).outcome == "tyre_skid"
+    assert simulate(s.replace(tyre_road_mu=crit * 1.005)).outcome == "held"
