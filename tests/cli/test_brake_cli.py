@@ -61,3 +61,20 @@ def test_console_script_bad_input_has_no_traceback():
     r = subprocess.run([sys.executable, "-m", "rollaway", "brake", "--hand-force-N", "-1"],
                        capture_output=True, text=True)
     assert r.returncode == 2 and "Traceback" not in r.stderr and "negative" in r.stderr
+
+
+@pytest.mark.parametrize("force, direction, gap_mm, mu", [(150, "downhill", 0, 0.3), (250, "uphill", 1, 0.6),
+                                                          (400, "uphill", 0, 0.4), (340, "downhill", 1, 0.4)])
+def test_brake_csv_matches_independent_reference(run_cli, force, direction, gap_mm, mu):
+    from tests.conftest import DATA
+    with open(DATA / "reference-values.csv") as fh:
+        ref = [r for r in csv.DictReader(fh) if float(r["hand_force_N"]) == force and r["direction"] == direction
+               and float(r["gap_m"]) == gap_mm / 1000 and float(r["mu_drum"]) == mu]
+    assert len(ref) == 7
+    code, out, err = run_cli("brake", "--hand-force-N", force, "--direction", direction, "--gap-mm", gap_mm,
+                             "--mu", mu, "--t-end-s", 3600, "--dt-s", 600, "--format", "csv")
+    assert code == 0, err
+    got = list(csv.DictReader(io.StringIO(out)))
+    for g, r in zip(got, ref, strict=True):
+        for col in ("time_s", "drum_temp_C", "normal_force_N", "torque_Nm"):
+            assert float(g[col]) == pytest.approx(float(r[col]), rel=1e-6, abs=1e-9), col
