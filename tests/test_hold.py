@@ -60,3 +60,12 @@ def test_bad_grade(grade):
 def test_bad_occupants():
     with pytest.raises(UserError, match="occupants"):
         hold.required_torque(paper(), 20, 2.5)
+
+
+def test_effective_slope_folds_negative_grade_into_facing():
+    assert hold.effective_slope(-20, "downhill") == (20.0, "uphill")
+    assert hold.effective_slope(30, "uphill") == (30.0, "uphill")
+    g, facing = hold.effective_slope(np.array([-10.0, 10.0]), np.array(["uphill", "uphill"]))
+    assert list(g) == [10.0, 10.0] and list(facing) == ["downhill", "uphill"]
+    p = paper()
+    assert hold.time_to_slip_s(p, 200.0, -20, "downhill", 1) == pytest.approx(hold.time_to_slip_s(p, 200.0, 20, "uphill", 1))

@@ -62,6 +62,18 @@ def _effective(grade_pct, direction):
     return np.abs(g), sign
 
 
+def effective_slope(grade_pct: ArrayLike, direction="downhill"):
+    """(|grade| [%], facing) with a negative grade folded into the facing (module docstring).
+
+    Scalars in, scalars out (``(20.0, "uphill")``); arrays broadcast.
+    """
+    g, sign = _effective(grade_pct, direction)
+    facing = _direction_of(sign)
+    if np.ndim(facing) == 0:
+        return float(g), str(facing)
+    return g, facing
+
+
 def _direction_of(sign):
     return np.where(np.asarray(sign) > 0, "downhill", "uphill")
 

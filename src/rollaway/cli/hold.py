@@ -10,8 +10,8 @@ from rollaway.cli.brake import time_grid_s
 from rollaway.cli import options as opt
 from rollaway.cli.output import FORMATS, write_table
 from rollaway.errors import check_choice
-from rollaway.hold import (analytic_verdict, hold_margin, minimum_hand_force_N, required_torque,
-                           tyre_adhesion_margin, validate_grade, validate_hand_force, validate_occupants)
+from rollaway.hold import (analytic_verdict, effective_slope, hold_margin, minimum_hand_force_N, required_torque,
+                           validate_grade, validate_hand_force, validate_occupants)
 from rollaway.brake import drum_brake
 from rollaway.parameters import load_parameters
 from rollaway.physics.drum import DIRECTIONS
@@ -43,8 +43,7 @@ def hold(
         ("mu_drum", mu, "--mu"), ("initial_drum_temp_C", t0_C, "--t0-C"), ("tyre_road_mu", tyre_mu, "--tyre-mu")])
     t = time_grid_s(duration_s, dt_s)
     margin = hold_margin(p, t, hand_force_N, grade_pct, direction, occupants)
-    s = drum_brake(p, time_s=t, hand_force_N=hand_force_N, direction=direction if grade_pct >= 0 else
-                   ("uphill" if direction == "downhill" else "downhill"))
+    s = drum_brake(p, time_s=t, hand_force_N=hand_force_N, direction=effective_slope(grade_pct, direction)[1])
     t_req = float(required_torque(p, grade_pct, occupants))
     write_table({"time_s": t, "drum_temp_C": s.drum_temp_C, "axle_torque_Nm": 2 * s.torque_Nm,
                  "required_torque_Nm": np.full_like(t, t_req), "hold_margin": margin}, fmt)
@@ -52,10 +51,9 @@ def hold(
                          occupants=occupants, duration_s=duration_s)
     fmin = float(minimum_hand_force_N(p, grade_pct, direction, occupants, duration_s))
     if fmt == "table":
-        tyre = float(tyre_adhesion_margin(p, grade_pct, direction, occupants))
         slip = "never within the duration" if np.isnan(v.time_to_slip_s) else f"{v.time_to_slip_s:.0f} s"
         typer.echo(f"brake margin min {v.brake_margin_min:.3f}; brake slips: {slip}; tyre adhesion margin "
-                   f"{tyre:.3f}; least hand force holding {duration_s:g} s: {fmin:.1f} N")
+                   f"{v.tyre_margin:.3f}; least hand force holding {duration_s:g} s: {fmin:.1f} N")
         typer.echo(f"verdict: {'HOLDS' if v.holds else 'ROLLS AWAY'} ({v.reason})")
     return 0 if v.holds else 1
 

@@ -36,8 +36,9 @@ import mujoco
 import numpy as np
 
 from rollaway.errors import UserError
+from rollaway.hold import effective_slope as hold_effective_slope
 from rollaway.hold import required_torque, total_mass_kg
-from rollaway.physics.vehicle import FRONT_ROW_SEATS
+from rollaway.physics.vehicle import FRONT_ROW_SEATS, grade_angle_rad
 from rollaway.scenario import Scenario
 
 MODEL_PATH = Path(__file__).resolve().parents[3] / "models" / "car.xml"
@@ -77,12 +78,8 @@ def _car_forward_sign(facing: str) -> float:
 
 
 def effective_slope(scenario: Scenario) -> tuple[float, str]:
-    """(|grade|, facing) after folding a negative grade into the heading (as rollaway.hold does)."""
-    g = float(scenario.grade_pct)
-    facing = scenario.direction
-    if g < 0:
-        facing = "uphill" if facing == "downhill" else "downhill"
-    return abs(g), facing
+    """(|grade|, facing) of *scenario*, a negative grade folded into the heading (:func:`rollaway.hold.effective_slope`)."""
+    return hold_effective_slope(scenario.grade_pct, scenario.direction)
 
 
 def _box_inertia(mass, size):
@@ -97,7 +94,7 @@ def build_spec(scenario: Scenario, *, sleep: bool = False, model_path: Path = MO
     p = scenario.params
     spec = mujoco.MjSpec.from_file(str(model_path))
     grade, facing = effective_slope(scenario)
-    theta = math.atan(grade / 100.0)
+    theta = float(grade_angle_rad(grade))
     spec.option.gravity = [0.0, 0.0, -p.gravity_m_s2]
     if not sleep:
         spec.option.enableflags &= ~int(mujoco.mjtEnableBit.mjENBL_SLEEP)
@@ -164,7 +161,7 @@ def build_model(scenario: Scenario, *, sleep: bool = False) -> tuple[mujoco.MjMo
     spec = build_spec(scenario, sleep=sleep)
     model = spec.compile()
     grade, facing = effective_slope(scenario)
-    theta = math.atan(grade / 100.0)
+    theta = float(grade_angle_rad(grade))
     jid = lambda n: mujoco.mj_name2id(model, mujoco.mjtObj.mjOBJ_JOINT, n)  # noqa: E731
     gid = lambda n: mujoco.mj_name2id(model, mujoco.mjtObj.mjOBJ_GEOM, n)  # noqa: E731
     car = mujoco.mj_name2id(model, mujoco.mjtObj.mjOBJ_BODY, "car")
