@@ -69,3 +69,11 @@ def test_effective_slope_folds_negative_grade_into_facing():
     assert list(g) == [10.0, 10.0] and list(facing) == ["downhill", "uphill"]
     p = paper()
     assert hold.time_to_slip_s(p, 200.0, -20, "downhill", 1) == pytest.approx(hold.time_to_slip_s(p, 200.0, 20, "uphill", 1))
+
+
+@pytest.mark.parametrize("t0", [300.0, 27.0, 0.0])
+def test_min_brake_margin_equals_dense_sampling(t0):
+    p = paper()
+    t = np.linspace(0, 1800, 3601)
+    dense = hold.hold_margin(p, t, 250, 20, "uphill", 2, initial_temp_C=t0).min()
+    assert hold.min_brake_margin(p, 250, 20, "uphill", 2, 1800, initial_temp_C=t0) == pytest.approx(dense, rel=1e-12)

@@ -72,6 +72,8 @@ class Scenario:
         return out
 
 
+MAX_DURATION_S = 7 * 86400.0   # a week of parking: far beyond the cooling (τ ≈ 1000 s)
+
 # key -> (type, required)
 _KEYS = {
     "name": (str, True), "description": (str, False), "grade_pct": (float, True), "direction": (str, True),
@@ -89,8 +91,8 @@ def _validate(s: Scenario, where: str) -> None:
         raise UserError(f"{where}: key 'occupants' = {s.occupants} must be a whole number from 0 to {MAX_OCCUPANTS}")
     if s.hand_force_N < 0:
         raise UserError(f"{where}: key 'hand_force_N' = {s.hand_force_N:g} is negative; give the lever force in N")
-    if not (0 < s.duration_s <= 7 * 86400):
-        raise UserError(f"{where}: key 'duration_s' = {s.duration_s:g} must be in (0, 604800] seconds")
+    if not (0 < s.duration_s <= MAX_DURATION_S):
+        raise UserError(f"{where}: key 'duration_s' = {s.duration_s:g} must be in (0, {MAX_DURATION_S:.0f}] seconds")
 
 
 def scenario_from_mapping(data: dict, where: str = "scenario", base_dir: Path | None = None) -> Scenario:

@@ -19,22 +19,20 @@ import numpy as np
 import pandas as pd
 
 from rollaway.errors import UserError
-from rollaway.hold import (MAX_OCCUPANTS, hold_margin, minimum_hand_force_N, time_to_slip_s, tyre_adhesion_margin,
-                           validate_occupants)
+from rollaway.hold import (hold_margin, invalid_grade, invalid_hand_force, invalid_occupants, min_brake_margin,
+                           minimum_hand_force_N, time_to_slip_s, tyre_adhesion_margin, validate_occupants)
 from rollaway.parameters import SPEC_BY_NAME
 from rollaway.physics.drum import DIRECTIONS
-from rollaway.scenario import Scenario
+from rollaway.scenario import MAX_DURATION_S, Scenario
 
 OUTCOMES = ("held", "brake_slip", "tyre_skid")
 
 
 def valid_mask(df: pd.DataFrame) -> np.ndarray:
     """True where every axis value is one the scenario validation accepts (vectorised)."""
-    g, n, f, d = (df[k].to_numpy(float) for k in ("grade_pct", "occupants", "hand_force_N", "duration_s"))
-    ok = np.isfinite(g) & (g > -100.0) & (g <= 100.0)
-    ok &= np.isfinite(n) & (n >= 0) & (n <= MAX_OCCUPANTS) & (n == np.round(n))
-    ok &= np.isfinite(f) & (f >= 0)
-    ok &= np.isfinite(d) & (d > 0) & (d <= 7 * 86400)
+    d = df["duration_s"].to_numpy(float)
+    ok = ~invalid_grade(df["grade_pct"]) & ~invalid_occupants(df["occupants"]) & ~invalid_hand_force(df["hand_force_N"])
+    ok &= np.isfinite(d) & (d > 0) & (d <= MAX_DURATION_S)
     for key in ("mu_drum", "initial_drum_temp_C", "tyre_road_mu"):
         v, spec = df[key].to_numpy(float), SPEC_BY_NAME[key]
         ok &= np.isfinite(v) & (v >= spec.lower) & (v <= spec.upper)
@@ -93,8 +91,7 @@ def analytic_pass(base: Scenario, points: pd.DataFrame, band) -> pd.DataFrame:
     mu_r, dur = v["tyre_road_mu"].to_numpy(float), v["duration_s"].to_numpy(float)
 
     m_start = hold_margin(p, 0.0, f, g, d, n, mu_drum=mu, initial_temp_C=t0)
-    m_end = hold_margin(p, dur, f, g, d, n, mu_drum=mu, initial_temp_C=t0)
-    brake = np.minimum(m_start, m_end)
+    brake = min_brake_margin(p, f, g, d, n, dur, mu, None, t0)
     tyre = tyre_adhesion_margin(p, g, d, n, mu_r)
     t_slip = time_to_slip_s(p, f, g, d, n, mu, None, t0, horizon_s=dur)
     f_min = minimum_hand_force_N(p, g, d, n, dur, mu, None, t0)
