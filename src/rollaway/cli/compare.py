@@ -5,7 +5,7 @@ from typing import List, Optional
 
 import typer
 
-from rollaway.cli.bench_common import load_data, load_plugins, prepare_outputs, parse_effects, write_outputs
+from rollaway.cli.identify_common import load_data, load_plugins, prepare_outputs, parse_effects, write_outputs
 
 
 def compare(
@@ -21,7 +21,7 @@ def compare(
 ) -> None:
     """Errors of the model (paper defaults unless --calibrate) on both channels, per test and overall:
     RMSE, bias, worst error; residual trends and the tests/time ranges outside the noise band."""
-    from rollaway.bench.compare import compare as run
+    from rollaway.identify.compare import compare as run
 
     prepare_outputs(report=report, json_out=json_out)
     load_plugins(effect_file)

@@ -5,7 +5,7 @@ from typing import List, Optional
 
 import typer
 
-from rollaway.cli.bench_common import load_data, load_plugins, prepare_outputs, write_outputs
+from rollaway.cli.identify_common import load_data, load_plugins, prepare_outputs, write_outputs
 
 
 def diagnose(
@@ -17,7 +17,7 @@ def diagnose(
 ) -> None:
     """Calibrate μ_d and h, fit every catalogue effect jointly, rank by BIC and leave-one-test-out
     cross-validation, and say which effect is missing (or 'none') with the evidence."""
-    from rollaway.bench.diagnose import diagnose as run
+    from rollaway.identify.diagnose import diagnose as run
 
     prepare_outputs(report=report, json_out=json_out)
     load_plugins(effect_file)

@@ -5,7 +5,7 @@ from typing import List, Optional
 
 import typer
 
-from rollaway.cli.bench_common import load_data, load_plugins, prepare_outputs, parse_effects, write_outputs
+from rollaway.cli.identify_common import load_data, load_plugins, prepare_outputs, parse_effects, write_outputs
 
 
 def fit(
@@ -20,7 +20,7 @@ def fit(
 ) -> None:
     """Error ladder: paper defaults → calibrated baseline → + each effect (each rung calibrated), with the
     fitted parameters, 95 % intervals and bound warnings."""
-    from rollaway.bench.ladder import fit as run
+    from rollaway.identify.ladder import fit as run
 
     prepare_outputs(report=report, json_out=json_out, plot=plot)
     load_plugins(effect_file)

@@ -6,7 +6,7 @@ from typing import List, Optional
 
 import typer
 
-from rollaway.cli.bench_common import load_plugins, parse_effects
+from rollaway.cli.identify_common import load_plugins, parse_effects
 from rollaway.errors import ensure_parent_dir
 
 
@@ -27,8 +27,8 @@ def synth(
     effect_file: List[str] = typer.Option([], "--effect-file", help="Python file defining Effect subclasses"),
 ) -> None:
     """Write synthetic bench data (both directions, a sample every 5 min for an hour, Gaussian noise)."""
-    from rollaway.bench.synth import DEFAULT_HAND_FORCES_N
-    from rollaway.bench.synth import synth as run
+    from rollaway.identify.synth import DEFAULT_HAND_FORCES_N
+    from rollaway.identify.synth import synth as run
 
     load_plugins(effect_file)
     data = run(parse_effects(effect), params=params, seed=seed, noise_torque_Nm=noise_torque_Nm,

@@ -1,7 +1,7 @@
 """Installation gap between lining and drum (paper eq. 16b)."""
 from __future__ import annotations
 
-from rollaway.bench.effects.base import Effect, EffectParameter
+from rollaway.effects.base import Effect, EffectParameter
 
 
 class InstallationGap(Effect):

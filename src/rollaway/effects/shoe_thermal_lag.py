@@ -3,7 +3,7 @@ from __future__ import annotations
 
 import numpy as np
 
-from rollaway.bench.effects.base import Effect, EffectParameter
+from rollaway.effects.base import Effect, EffectParameter
 
 
 def lagged_temperature_C(time_s, initial_temp_C, ambient_C, drum_time_constant_s, lag_time_constant_s):

@@ -3,7 +3,7 @@ from __future__ import annotations
 
 import numpy as np
 
-from rollaway.bench.effects.base import Effect, EffectParameter
+from rollaway.effects.base import Effect, EffectParameter
 
 
 class LiningCreep(Effect):

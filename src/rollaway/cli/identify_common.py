@@ -3,7 +3,7 @@ from __future__ import annotations
 
 
 def load_plugins(files) -> list[str]:
-    from rollaway.bench.effects import load_effect_file
+    from rollaway.effects import load_effect_file
     names = []
     for f in files or ():
         names += load_effect_file(f)
@@ -12,7 +12,7 @@ def load_plugins(files) -> list[str]:
 
 def parse_effects(specs) -> dict[str, dict[str, float]]:
     """``NAME`` / ``NAME=param=value,...`` options → {name: values}; names validated, repeats refused."""
-    from rollaway.bench.synth import parse_effect_spec
+    from rollaway.identify.synth import parse_effect_spec
     from rollaway.errors import UserError
     out: dict[str, dict[str, float]] = {}
     for s in specs or ():
@@ -27,7 +27,7 @@ def load_data(path):
     """Load a measurement CSV (validated) and print its notes on stderr."""
     import typer
 
-    from rollaway.bench.measurements import load_measurements
+    from rollaway.identify.measurements import load_measurements
     data = load_measurements(path)
     for note in data.notes:
         typer.echo(f"note: {note}", err=True)

@@ -22,7 +22,7 @@ neutral model is bit-identical to the baseline (:func:`rollaway.brake.drum_brake
 Writing your own effect (plugin)::
 
     # my_effect.py, used as:  rollaway fit DATA.csv --effect-file my_effect.py --effect humidity
-    from rollaway.bench.effects.base import Effect, EffectParameter
+    from rollaway.effects.base import Effect, EffectParameter
 
     class Humidity(Effect):
         name = "humidity"

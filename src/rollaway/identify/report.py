@@ -11,7 +11,7 @@ matplotlib.use("Agg")
 import matplotlib.pyplot as plt  # noqa: E402
 import numpy as np  # noqa: E402
 
-from rollaway.bench.calibrate import FitResult  # noqa: E402
+from rollaway.identify.calibrate import FitResult  # noqa: E402
 
 CSS = ("body{font-family:system-ui,sans-serif;max-width:1100px;margin:2em auto;color:#222}"
        "table{border-collapse:collapse;font-size:90%}td,th{border:1px solid #ccc;padding:3px 8px;text-align:right}"
@@ -150,7 +150,7 @@ def comparison_report(cmp, path) -> None:
 
 
 def diagnosis_report(diag, path) -> None:
-    from rollaway.bench.ladder import Ladder
+    from rollaway.identify.ladder import Ladder
     noise = {"torque": diag.noise_torque.sigma, "temperature": diag.noise_temp.sigma}
     rungs = [("paper defaults", diag.paper), ("calibrated baseline", diag.baseline)]
     if diag.refined is not diag.baseline:

@@ -13,16 +13,16 @@ import sys
 from importlib.metadata import entry_points
 from pathlib import Path
 
-from rollaway.bench.effects.base import Effect, EffectParameter, ModelState
-from rollaway.bench.effects.cable_relaxation import CableRelaxation
-from rollaway.bench.effects.drum_radial_contraction import DrumRadialContraction
-from rollaway.bench.effects.friction_temperature import FrictionTemperature
-from rollaway.bench.effects.installation_gap import InstallationGap
-from rollaway.bench.effects.lining_creep import LiningCreep
-from rollaway.bench.effects.modulus_temperature import ModulusTemperature
-from rollaway.bench.effects.nonlinear_lining_stiffness import NonlinearLiningStiffness
-from rollaway.bench.effects.radiation_cooling import RadiationCooling
-from rollaway.bench.effects.shoe_thermal_lag import ShoeThermalLag
+from rollaway.effects.base import Effect, EffectParameter, ModelState
+from rollaway.effects.cable_relaxation import CableRelaxation
+from rollaway.effects.drum_radial_contraction import DrumRadialContraction
+from rollaway.effects.friction_temperature import FrictionTemperature
+from rollaway.effects.installation_gap import InstallationGap
+from rollaway.effects.lining_creep import LiningCreep
+from rollaway.effects.modulus_temperature import ModulusTemperature
+from rollaway.effects.nonlinear_lining_stiffness import NonlinearLiningStiffness
+from rollaway.effects.radiation_cooling import RadiationCooling
+from rollaway.effects.shoe_thermal_lag import ShoeThermalLag
 from rollaway.errors import UserError, check_choice
 
 ENTRY_POINT_GROUP = "rollaway.effects"
@@ -36,7 +36,7 @@ _entry_points_loaded = False
 
 def _validate_class(cls, where: str) -> type[Effect]:
     if not (inspect.isclass(cls) and issubclass(cls, Effect)):
-        raise UserError(f"{where}: {cls!r} is not a subclass of rollaway.bench.effects.base.Effect")
+        raise UserError(f"{where}: {cls!r} is not a subclass of rollaway.effects.base.Effect")
     if not cls.name or not cls.name.isidentifier():
         raise UserError(f"{where}: effect class {cls.__name__} needs a 'name' that is a Python identifier")
     if not cls.parameters:
@@ -72,7 +72,7 @@ def load_effect_file(path: str | Path) -> list[str]:
              if inspect.isclass(obj) and issubclass(obj, Effect) and obj is not Effect
              and obj.__module__ == mod_name]
     if not found:
-        raise UserError(f"{path}: defines no subclass of rollaway.bench.effects.base.Effect")
+        raise UserError(f"{path}: defines no subclass of rollaway.effects.base.Effect")
     return [register_effect(cls, str(path)).name for cls in found]
 
 

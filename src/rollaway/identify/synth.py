@@ -9,9 +9,9 @@ from __future__ import annotations
 
 import numpy as np
 
-from rollaway.bench.effects import get_effect
-from rollaway.bench.measurements import Measurements
-from rollaway.bench.model import BenchModel
+from rollaway.effects import get_effect
+from rollaway.identify.measurements import Measurements
+from rollaway.identify.model import BenchModel
 from rollaway.errors import UserError
 
 DEFAULT_HAND_FORCES_N = (200.0, 245.0, 290.0, 340.0)

@@ -1,10 +1,10 @@
 import numpy as np
 import pytest
 
-from rollaway.bench import BenchModel, Measurements
-from rollaway.bench.effects import CATALOGUE, get_effect
-from rollaway.bench.effects.radiation_cooling import radiative_convective_temperature_C
-from rollaway.bench.effects.shoe_thermal_lag import lagged_temperature_C
+from rollaway.identify import BenchModel, Measurements
+from rollaway.effects import CATALOGUE, get_effect
+from rollaway.effects.radiation_cooling import radiative_convective_temperature_C
+from rollaway.effects.shoe_thermal_lag import lagged_temperature_C
 from rollaway.brake import drum_brake
 from rollaway.errors import UserError
 from rollaway.parameters import paper

@@ -6,9 +6,9 @@ from dataclasses import dataclass, field
 
 import numpy as np
 
-from rollaway.bench.calibrate import FitResult, calibrate, evaluate
-from rollaway.bench.measurements import Measurements
-from rollaway.bench.residuals import Noise, association, excursions, noise_estimate, trend_words
+from rollaway.identify.calibrate import FitResult, calibrate, evaluate
+from rollaway.identify.measurements import Measurements
+from rollaway.identify.residuals import Noise, association, excursions, noise_estimate, trend_words
 
 NOISE_BAND = 2.5   # a residual leaves the noise band when |r| > 2.5 σ
 
@@ -63,7 +63,7 @@ class Comparison:
         return self.summary()
 
     def report(self, path) -> None:
-        from rollaway.bench.report import comparison_report
+        from rollaway.identify.report import comparison_report
         comparison_report(self, path)
 
 
@@ -125,7 +125,7 @@ def compare(data: Measurements, params=None, effects=None, *, calibrated: bool =
     ``calibrated=True`` μ_d, h and the effects' parameters are fitted first; otherwise the
     model runs at the set's values (``paper`` by default).
     """
-    from rollaway.bench.synth import _effect_values
+    from rollaway.identify.synth import _effect_values
     chosen = _effect_values(effects or ())
     values = {f"{n}.{k}": v for n, vals in chosen.items() for k, v in vals.items()}
     if calibrated:

@@ -5,13 +5,13 @@ from pathlib import Path
 import numpy as np
 import pytest
 
-from rollaway.bench.diagnose import diagnose
-from rollaway.bench.effects import CATALOGUE, _USER, load_effect_file
-from rollaway.bench.ladder import fit
-from rollaway.bench.synth import synth
+from rollaway.identify.diagnose import diagnose
+from rollaway.effects import CATALOGUE, _USER, load_effect_file
+from rollaway.identify.ladder import fit
+from rollaway.identify.synth import synth
 
 ROOT = Path(__file__).resolve().parents[2]
-PLUGIN = ROOT / "examples" / "bench" / "ratchet_slip_effect.py"
+PLUGIN = ROOT / "examples" / "identify" / "ratchet_slip_effect.py"
 NOISE_NM = 8.0
 
 

@@ -3,7 +3,7 @@ from __future__ import annotations
 
 import numpy as np
 
-from rollaway.bench.effects.base import Effect, EffectParameter
+from rollaway.effects.base import Effect, EffectParameter
 
 STEFAN_BOLTZMANN_W_m2K4 = 5.670374419e-8
 KELVIN = 273.15

@@ -12,8 +12,8 @@ from dataclasses import dataclass
 
 import numpy as np
 
-from rollaway.bench.effects import Effect, ModelState, get_effect
-from rollaway.bench.measurements import Measurements
+from rollaway.effects import Effect, ModelState, get_effect
+from rollaway.identify.measurements import Measurements
 from rollaway.parameters import BrakeParameters, load_parameters
 from rollaway.physics import cooling, drum
 

@@ -1,7 +1,7 @@
 """Which physical effect is the model missing?  Calibrate, fit each candidate, rank, decide.
 
 1. Calibrate the baseline (μ_d, h).  Estimate the noise of each channel without the physics
-   (:func:`rollaway.bench.residuals.noise_estimate`).
+   (:func:`rollaway.identify.residuals.noise_estimate`).
 2. Fit every candidate effect jointly with μ_d and h; rank by BIC (both channels).
 3. Candidates with ΔBIC < −10 against the baseline are cross-validated leave-one-test-out:
    each test is predicted by a model calibrated on the others; the candidate must predict
@@ -21,10 +21,10 @@ import numpy as np
 
 from rollaway.jsonsafe import to_jsonable
 
-from rollaway.bench.calibrate import FitResult, calibrate, evaluate
-from rollaway.bench.effects import available_effects, get_effect
-from rollaway.bench.measurements import Measurements
-from rollaway.bench.residuals import Noise, association, noise_estimate, structure_tests, trend_words
+from rollaway.identify.calibrate import FitResult, calibrate, evaluate
+from rollaway.effects import available_effects, get_effect
+from rollaway.identify.measurements import Measurements
+from rollaway.identify.residuals import Noise, association, noise_estimate, structure_tests, trend_words
 
 BIC_THRESHOLD = -10.0        # "very strong" evidence (Kass & Raftery 1995)
 INDISTINGUISHABLE_BIC = 6.0  # candidates within this ΔBIC of the best cannot be told apart
@@ -102,7 +102,7 @@ class Diagnosis:
         return self.summary()
 
     def report(self, path) -> None:
-        from rollaway.bench.report import diagnosis_report
+        from rollaway.identify.report import diagnosis_report
         diagnosis_report(self, path)
 
 

@@ -3,9 +3,9 @@ from __future__ import annotations
 
 from dataclasses import dataclass
 
-from rollaway.bench.calibrate import FitResult, calibrate, evaluate
-from rollaway.bench.effects import get_effect
-from rollaway.bench.measurements import Measurements
+from rollaway.identify.calibrate import FitResult, calibrate, evaluate
+from rollaway.effects import get_effect
+from rollaway.identify.measurements import Measurements
 
 
 @dataclass
@@ -46,11 +46,11 @@ class Ladder:
         return self.summary()
 
     def report(self, path) -> None:
-        from rollaway.bench.report import ladder_report
+        from rollaway.identify.report import ladder_report
         ladder_report(self, path)
 
     def plot(self, path=None):
-        from rollaway.bench.report import ladder_figure
+        from rollaway.identify.report import ladder_figure
         fig = ladder_figure(self)
         if path is not None:
             fig.savefig(path, dpi=110, bbox_inches="tight")

@@ -3,7 +3,7 @@ from __future__ import annotations
 
 import numpy as np
 
-from rollaway.bench.effects.base import Effect, EffectParameter
+from rollaway.effects.base import Effect, EffectParameter
 
 REFERENCE_DISPLACEMENT_M = 1e-4   # u_6 at ≈ 300 N (eq. 24)
 

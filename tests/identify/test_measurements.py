@@ -2,7 +2,7 @@ import textwrap
 
 import pytest
 
-from rollaway.bench import load_measurements
+from rollaway.identify import load_measurements
 from rollaway.errors import UserError
 
 GOOD = """\

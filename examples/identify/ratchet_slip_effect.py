@@ -1,10 +1,10 @@
 """Example user effect (plugin): the lever's ratchet slips one tooth during the hold.
 
-Use it with:  rollaway fit DATA.csv --effect-file examples/bench/ratchet_slip_effect.py --effect ratchet_slip
+Use it with:  rollaway fit DATA.csv --effect-file examples/identify/ratchet_slip_effect.py --effect ratchet_slip
 """
 import numpy as np
 
-from rollaway.bench.effects.base import Effect, EffectParameter
+from rollaway.effects.base import Effect, EffectParameter
 
 
 class RatchetSlip(Effect):

@@ -16,8 +16,8 @@ from dataclasses import dataclass, field
 import numpy as np
 from scipy import optimize, stats
 
-from rollaway.bench.measurements import Measurements
-from rollaway.bench.model import BenchModel, Prediction
+from rollaway.identify.measurements import Measurements
+from rollaway.identify.model import BenchModel, Prediction
 
 
 @dataclass

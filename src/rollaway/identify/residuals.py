@@ -14,7 +14,7 @@ from dataclasses import dataclass
 import numpy as np
 from scipy import stats
 
-from rollaway.bench.measurements import Measurements
+from rollaway.identify.measurements import Measurements
 
 FLEX_BASIS = 4          # 1, x, x², x³ per test
 STRUCTURE_P = 1e-3      # significance of each structure test

@@ -3,7 +3,7 @@ from __future__ import annotations
 
 import numpy as np
 
-from rollaway.bench.effects.base import Effect, EffectParameter
+from rollaway.effects.base import Effect, EffectParameter
 
 REFERENCE_TEMP_C = 100.0   # μ_d is the friction coefficient at this lining temperature
 MU_MAX_FRACTION = 0.95      # keep μ below 0.95·l_f/l_fr: the fit never enters self-locking
