@@ -83,6 +83,7 @@ class ModelState:
     mu_drum: float
     drum_temp_C: np.ndarray | None = None
     lining_temp_C: np.ndarray | None = None
+    test_index: np.ndarray | None = None   # index of each sample's test (bench data), None on the road
     extra: dict = field(default_factory=dict)
 
     @property

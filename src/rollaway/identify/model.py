@@ -97,7 +97,8 @@ class BenchModel:
         values = {**self.neutral_values(), **(values or {})}
         amb = self.params.ambient_temp_C if data.ambient_C is None else data.ambient_C
         return ModelState(self.params, data.time_s, data.hand_force_N, data.sign, data.initial_temp_C, amb,
-                          float(values["heat_transfer_W_m2K"]), float(values["mu_drum"]))
+                          float(values["heat_transfer_W_m2K"]), float(values["mu_drum"]),
+                          test_index=data.test_index)
 
     def drum_temperature(self, data: Measurements, values: dict | None = None,
                          state: ModelState | None = None) -> np.ndarray:
