@@ -73,6 +73,8 @@ def load_effect_file(path: str | Path) -> list[str]:
              and obj.__module__ == mod_name]
     if not found:
         raise UserError(f"{path}: defines no subclass of rollaway.effects.base.Effect")
+    for cls in found:
+        cls.__rollaway_source__ = str(path)   # named in the errors of its hooks
     return [register_effect(cls, str(path)).name for cls in found]
 
 

@@ -13,14 +13,15 @@ def lagged_temperature_C(time_s, initial_temp_C, ambient_C, drum_time_constant_s
     T_l = T_amb + A·(τ·e^{−t/τ} − τ_l·e^{−t/τ_l})/(τ − τ_l)  (limit A·(1 + t/τ)·e^{−t/τ} at τ_l = τ).
     """
     t = np.asarray(time_s, float)
-    tau = float(drum_time_constant_s)
-    tau_l = float(lag_time_constant_s)
+    tau = np.asarray(drum_time_constant_s, float)
+    tau_l = np.asarray(lag_time_constant_s, float)
     amp = np.asarray(initial_temp_C, float) - ambient_C
-    if tau_l <= 0.0:
-        return ambient_C + amp * np.exp(-t / tau)
-    if abs(tau - tau_l) < 1e-6 * tau:
-        return ambient_C + amp * (1.0 + t / tau) * np.exp(-t / tau)
-    return ambient_C + amp * (tau * np.exp(-t / tau) - tau_l * np.exp(-t / tau_l)) / (tau - tau_l)
+    plain = ambient_C + amp * np.exp(-t / tau)
+    equal = ambient_C + amp * (1.0 + t / tau) * np.exp(-t / tau)
+    with np.errstate(divide="ignore", invalid="ignore", over="ignore"):
+        lag = ambient_C + amp * (tau * np.exp(-t / tau) - tau_l * np.exp(-t / np.where(tau_l > 0, tau_l, 1.0))) \
+            / (tau - tau_l)
+    return np.where(tau_l <= 0.0, plain, np.where(np.abs(tau - tau_l) < 1e-6 * tau, equal, lag))
 
 
 class ShoeThermalLag(Effect):

@@ -1,10 +1,10 @@
-"""The extended bench model: the paper's baseline plus effect hooks, over all samples at once.
+"""The model a calibration moves: the drum model's free values, evaluated on bench samples.
 
-Free baseline parameters are ``mu_drum`` (μ_d) and ``heat_transfer_W_m2K`` (h); effect
-parameters are named ``"<effect>.<parameter>"``.  With no effects (or all effects neutral)
-the computation calls exactly the baseline functions of :mod:`rollaway.brake` and
-:mod:`rollaway.physics` in the same order, so the result is bit-identical to
-:func:`rollaway.brake.drum_brake`.
+The chain itself is :class:`rollaway.model.DrumModel` (the same one the hold check, the
+simulator and sweeps use); this class only maps the fit's free parameters — ``mu_drum``
+(μ_d), ``heat_transfer_W_m2K`` (h) and ``"<effect>.<parameter>"`` — onto it and evaluates it
+on all samples of all tests at once.  With no effects (or all effects neutral) the result is
+bit-identical to :func:`rollaway.brake.drum_brake`.
 """
 from __future__ import annotations
 
@@ -12,14 +12,10 @@ from dataclasses import dataclass
 
 import numpy as np
 
-from rollaway.effects import Effect, ModelState, get_effect
+from rollaway.effects import ModelState
 from rollaway.identify.measurements import Measurements
-from rollaway.parameters import BrakeParameters, load_parameters
-from rollaway.physics import cooling, drum
-
-BASELINE_FREE = ("mu_drum", "heat_transfer_W_m2K")
-BASELINE_BOUNDS = {"mu_drum": (0.02, 1.0), "heat_transfer_W_m2K": (1.0, 400.0)}
-BASELINE_UNITS = {"mu_drum": "–", "heat_transfer_W_m2K": "W/(m² K)"}
+from rollaway.model import BASELINE_BOUNDS, BASELINE_FREE, BASELINE_UNITS, DrumModel  # noqa: F401
+from rollaway.parameters import BrakeParameters
 
 
 @dataclass
@@ -31,49 +27,26 @@ class Prediction:
 
 
 class BenchModel:
-    """Baseline + a list of effects; :meth:`predict` evaluates it on measurements."""
+    """Free parameters of a :class:`DrumModel` and its evaluation on measurements."""
 
     def __init__(self, params: BrakeParameters | str | None = None, effects=()):
-        self.params = params if isinstance(params, BrakeParameters) else load_parameters(params)
-        self.effects: list[Effect] = [get_effect(e) for e in effects]
-        names = [e.name for e in self.effects]
-        dup = {n for n in names if names.count(n) > 1}
-        if dup:
-            from rollaway.errors import UserError
-            raise UserError(f"effect '{sorted(dup)[0]}' is given twice; name each effect once")
+        self.drum = params if isinstance(params, DrumModel) else DrumModel(params, effects)
+        self.params = self.drum.params
+        self.effects = list(self.drum.effects)
 
     # -- parameters ------------------------------------------------------------------
     def parameter_names(self) -> list[str]:
-        return list(BASELINE_FREE) + [f"{e.name}.{p.name}" for e in self.effects for p in e.parameters]
+        return list(BASELINE_FREE) + list(self.drum.neutral_values())
 
     def neutral_values(self) -> dict[str, float]:
-        v = {"mu_drum": self.params.mu_drum, "heat_transfer_W_m2K": self.params.heat_transfer_W_m2K}
-        for e in self.effects:
-            v.update({f"{e.name}.{k}": x for k, x in e.neutral_values().items()})
-        return v
+        return {"mu_drum": self.params.mu_drum, "heat_transfer_W_m2K": self.params.heat_transfer_W_m2K,
+                **self.drum.neutral_values()}
 
     def bounds(self, name: str) -> tuple[float, float]:
-        if name in BASELINE_BOUNDS:
-            lo, hi = BASELINE_BOUNDS[name]
-            if name == "mu_drum":   # never let the fit enter the self-locking region (eqs. 18–21)
-                p = self.params
-                hi = min(hi, 0.95 * p.shoe_arm_normal_m / max(p.shoe_arm_friction_m, 1e-12))
-            return lo, hi
-        eff, par = name.split(".", 1)
-        spec = self._effect(eff).parameter(par)
-        return spec.lower, spec.upper
+        return self.drum.bounds(name)
 
     def unit(self, name: str) -> str:
-        if name in BASELINE_UNITS:
-            return BASELINE_UNITS[name]
-        eff, par = name.split(".", 1)
-        return self._effect(eff).parameter(par).unit
-
-    def _effect(self, name: str) -> Effect:
-        for e in self.effects:
-            if e.name == name:
-                return e
-        raise KeyError(name)
+        return self.drum.unit(name)
 
     def temperature_parameters(self) -> list[str]:
         """Parameters of the drum-temperature channel (h and temperature-changing effects)."""
@@ -85,72 +58,42 @@ class BenchModel:
                               for p in e.parameters]
 
     # -- evaluation ------------------------------------------------------------------
-    def _active(self, values: dict) -> list[tuple[Effect, dict]]:
-        out = []
-        for e in self.effects:
-            v = {p.name: float(values.get(f"{e.name}.{p.name}", p.neutral)) for p in e.parameters}
-            if not e.is_neutral(v):
-                out.append((e, v))
-        return out
+    def _split(self, values: dict | None):
+        values = {**self.neutral_values(), **(values or {})}
+        effect_values = {k: float(v) for k, v in values.items() if k not in BASELINE_FREE}
+        return values, effect_values
+
+    def _inputs(self, data: Measurements, values: dict) -> dict:
+        amb = self.params.ambient_temp_C if data.ambient_C is None else data.ambient_C
+        return dict(initial_temp_C=data.initial_temp_C, ambient_C=amb,
+                    heat_transfer_W_m2K=float(values["heat_transfer_W_m2K"]), test_index=data.test_index)
 
     def state(self, data: Measurements, values: dict | None = None) -> ModelState:
-        values = {**self.neutral_values(), **(values or {})}
-        amb = self.params.ambient_temp_C if data.ambient_C is None else data.ambient_C
-        return ModelState(self.params, data.time_s, data.hand_force_N, data.sign, data.initial_temp_C, amb,
-                          float(values["heat_transfer_W_m2K"]), float(values["mu_drum"]),
-                          test_index=data.test_index)
+        values, _ = self._split(values)
+        return self.drum.state(data.time_s, data.hand_force_N, data.sign, mu_drum=float(values["mu_drum"]),
+                               **self._inputs(data, values))
 
     def drum_temperature(self, data: Measurements, values: dict | None = None,
                          state: ModelState | None = None) -> np.ndarray:
         """Measured channel: drum temperature, eq. (10) plus temperature hooks [°C]."""
-        values = {**self.neutral_values(), **(values or {})}
-        st = self.state(data, values) if state is None else state
-        p = self.params
-        tau = cooling.cooling_time_constant_s(p.drum_density_kg_m3, p.drum_specific_heat_J_kgK, p.drum_volume_m3,
-                                              st.heat_transfer_W_m2K, p.cooled_area_m2)
-        temp = cooling.drum_temperature_C(st.time_s, st.initial_temp_C, st.ambient_C, tau)
-        for e, v in self._active(values):
-            temp = e.drum_temperature(st, temp, v)
-        return temp
+        values, effect_values = self._split(values)
+        kw = self._inputs(data, values)
+        st = state if state is not None else (self.state(data, values) if self.drum.active(effect_values) else None)
+        return self.drum.drum_temperature(data.time_s, initial_temp_C=kw["initial_temp_C"], ambient_C=kw["ambient_C"],
+                                          heat_transfer_W_m2K=kw["heat_transfer_W_m2K"], values=effect_values,
+                                          state=st)
 
     def predict(self, data: Measurements, values: dict | None = None,
                 drum_temp_C: np.ndarray | None = None) -> Prediction:
         """Both channels for every sample; *drum_temp_C* reuses a temperature already computed."""
-        values = {**self.neutral_values(), **(values or {})}
-        active = self._active(values)
-        p = self.params
-        st = self.state(data, values)
-        st.drum_temp_C = self.drum_temperature(data, values, st) if drum_temp_C is None else drum_temp_C
-        lining = st.drum_temp_C
-        for e, v in active:
-            lining = e.lining_temperature(st, lining, v)
-        st.lining_temp_C = lining
-        dT = cooling.temperature_change_K(st.drum_temp_C, st.initial_temp_C)
-        u6 = drum.lining_displacement_m(st.hand_force_N, p.u6_slope_m_per_N, p.u6_offset_m)
-        modulus, gap = p.lining_modulus_Pa, p.gap_m
-        for e, v in active:
-            u6 = e.displacement(st, u6, v)
-            modulus = e.lining_modulus(st, modulus, v)
-            gap = e.gap(st, gap, v)
-        f0 = drum.normal_force_unenergised_N(
-            u6, dT, drum_area_m2=p.drum_area_m2, drum_modulus_Pa=p.drum_modulus_Pa, lining_area_m2=p.lining_area_m2,
-            lining_modulus_Pa=modulus, drum_expansion_per_K=p.drum_expansion_per_K,
-            lining_expansion_per_K=p.lining_expansion_per_K, drum_thickness_m=p.drum_thickness_m,
-            lining_thickness_m=p.lining_thickness_m, gap_m=gap)
-        if active:
-            k_d = p.drum_area_m2 * p.drum_modulus_Pa
-            k_l = p.lining_area_m2 * np.asarray(modulus)
-            l_eff = p.lining_thickness_m + np.asarray(gap)
-            den = k_l * p.drum_thickness_m + k_d * l_eff
-            st.extra["series_stiffness_N_per_m"] = k_d * k_l / den
-            if lining is not st.drum_temp_C:   # the lining's own thermal strain α_l·ΔT_l (eq. 16)
-                f0 = f0 + k_d * k_l * p.lining_expansion_per_K * l_eff * (lining - st.drum_temp_C) / den
-            for e, v in active:
-                f0 = e.clamp_force(st, f0, v)
-        mu = st.mu_drum
-        for e, v in active:
-            mu = e.friction(st, np.broadcast_to(np.asarray(mu, float), st.time_s.shape), v)
-        factor = drum.self_energising_factor(mu, st.sign, p.shoe_arm_normal_m, p.shoe_arm_friction_m)
-        f_l = drum.normal_force_N(f0, factor)
-        torque = drum.brake_torque_Nm(mu, f_l, p.drum_radius_m)
-        return Prediction(st.drum_temp_C, np.broadcast_to(lining, st.time_s.shape), f_l, torque)
+        values, effect_values = self._split(values)
+        s = self.drum.evaluate(data.time_s, data.hand_force_N, data.sign, mu_drum=float(values["mu_drum"]),
+                               values=effect_values, drum_temp_C=drum_temp_C, **self._inputs(data, values))
+        return Prediction(s.drum_temp_C, s.lining_temp_C, s.normal_force_N, s.torque_Nm)
+
+    def drum_model(self, values: dict | None = None, **kw) -> DrumModel:
+        """The calibrated :class:`DrumModel` at *values* (μ_d and h go into the parameter set)."""
+        values, effect_values = self._split(values)
+        return DrumModel(self.params.replace(mu_drum=float(values["mu_drum"]),
+                                             heat_transfer_W_m2K=float(values["heat_transfer_W_m2K"])),
+                         self.effects, effect_values, **kw)

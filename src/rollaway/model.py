@@ -1,0 +1,387 @@
+"""The drum model: ONE chain from hand force to brake torque, with optional physical effects.
+
+:class:`DrumModel` = a parameter set (:class:`~rollaway.parameters.BrakeParameters`) +
+effects (:mod:`rollaway.effects`, the catalogue or plugins) + the effects' values, and,
+for a model calibrated on bench data, the covariance of the fitted parameters and where
+they came from.  Every part of rollaway evaluates the drum through :meth:`DrumModel.evaluate`:
+the analytic hold check (:mod:`rollaway.hold`), the MuJoCo brake callback, sweeps, figures
+and the fits of :mod:`rollaway.identify`.
+
+Follow ``hand_force_N`` through :meth:`DrumModel.evaluate`:
+
+1. drum temperature T_d(t), eq. (10) (cooling law)            hook ``drum_temperature``
+2. lining temperature T_l(t) (= T_d in the paper)             hook ``lining_temperature``
+3. lining displacement u_6 from the hand force, eq. (24)      hook ``displacement``
+4. lining modulus E_l and installation gap l_g (eq. 16)       hooks ``lining_modulus``, ``gap``
+5. clamp force F_l0 before self-energising, eq. (16a/b)       hook ``clamp_force``
+6. friction coefficient μ_d                                   hook ``friction``
+7. self-energising factor, eqs. (18)–(21); F_l = F_l0 · factor
+8. brake torque T_gen = μ_d · F_l · r_d, eq. (17b)
+
+With no effect away from its neutral values the chain runs exactly the paper's functions
+in the paper's order (bit-identical to the baseline).  Everything broadcasts (numpy rules):
+pass arrays of time, hand force, direction, μ_d, T_0 — or of effect values — and get arrays back.
+"""
+from __future__ import annotations
+
+from dataclasses import dataclass
+
+import numpy as np
+from numpy.typing import ArrayLike
+
+from rollaway.effects.base import Effect, ModelState
+from rollaway.errors import UserError
+from rollaway.parameters import BrakeParameters, load_parameters
+from rollaway.physics import cooling, drum
+
+# Free baseline parameters of a calibration and their bounds (μ_d: eqs. 17b–21; h: eq. 10) [assumed ranges]
+BASELINE_FREE = ("mu_drum", "heat_transfer_W_m2K")
+BASELINE_BOUNDS = {"mu_drum": (0.02, 1.0), "heat_transfer_W_m2K": (1.0, 400.0)}
+BASELINE_UNITS = {"mu_drum": "–", "heat_transfer_W_m2K": "W/(m² K)"}
+
+
+@dataclass(frozen=True)
+class BrakeSeries:
+    """Time series of one drum (arrays broadcast to a common shape)."""
+
+    time_s: np.ndarray
+    drum_temp_C: np.ndarray
+    normal_force_N: np.ndarray
+    torque_Nm: np.ndarray
+    self_locked: np.ndarray   # True where l_f − s·μ_d·l_fr ≤ 0 (eqs. 18–21): torque is unbounded
+    lining_temp_C: np.ndarray | None = None   # what the lining feels (= drum_temp_C without effects)
+
+    def columns(self) -> dict[str, np.ndarray]:
+        return {"time_s": self.time_s, "drum_temp_C": self.drum_temp_C,
+                "normal_force_N": self.normal_force_N, "torque_Nm": self.torque_Nm}
+
+
+@dataclass(frozen=True)
+class Covariance:
+    """Covariance of fitted parameters: names (``"mu_drum"``, ``"lining_creep.relaxed_fraction"``) and matrix."""
+
+    names: tuple[str, ...]
+    matrix: np.ndarray
+
+    def __post_init__(self):
+        m = np.asarray(self.matrix, float)
+        object.__setattr__(self, "matrix", m)
+        object.__setattr__(self, "names", tuple(self.names))
+        if m.shape != (len(self.names), len(self.names)):
+            raise UserError(f"covariance: matrix is {m.shape[0]}×{m.shape[1] if m.ndim > 1 else 1} but "
+                            f"{len(self.names)} names are given; give one row and column per name")
+
+    @property
+    def stderr(self) -> dict[str, float]:
+        return {n: float(np.sqrt(max(self.matrix[i, i], 0.0))) for i, n in enumerate(self.names)}
+
+
+def direction_to_sign(direction) -> np.ndarray:
+    """+1 facing downhill (eq. 18), −1 uphill (eq. 19); accepts names or numeric signs."""
+    d = np.asarray(direction)
+    if d.dtype.kind in "biuf":
+        return np.where(d.astype(float) < 0, -1.0, 1.0)
+    return drum.direction_sign(direction)
+
+
+class DrumModel:
+    """Parameter set + effects + effect values (+ covariance and provenance when calibrated).
+
+    ``values`` maps ``"<effect>.<parameter>"`` to a value; missing ones are the effect's neutral
+    value.  The baseline values μ_d and h live in :attr:`params`.
+    """
+
+    def __init__(self, params: BrakeParameters | str | None = None, effects=(), values: dict | None = None, *,
+                 covariance: Covariance | None = None, provenance: dict | None = None, name: str | None = None,
+                 base: str | None = None, effect_files: dict | None = None):
+        from rollaway.effects import get_effect
+
+        self.params = params if isinstance(params, BrakeParameters) else load_parameters(params)
+        self.effects: tuple[Effect, ...] = tuple(get_effect(e) for e in effects)
+        names = [e.name for e in self.effects]
+        dup = sorted({n for n in names if names.count(n) > 1})
+        if dup:
+            raise UserError(f"effect '{dup[0]}' is given twice; name each effect once")
+        full = self.neutral_values()
+        for key, v in (values or {}).items():
+            if key not in full:
+                raise UserError(f"model values: unknown effect parameter '{key}'; the model's effect parameters are: "
+                                + (", ".join(full) or "none (no effects)"))
+            full[key] = v
+        self.values: dict[str, float] = full
+        self.covariance = covariance
+        self.provenance = dict(provenance or {})
+        self.name = name or (self.params.name + "".join(" + " + n for n in names))
+        self.base = base or "paper"              # named set the parameters extend (model files)
+        self.effect_files = dict(effect_files or {})   # effect name -> plugin file it came from
+
+    # -- bookkeeping -------------------------------------------------------------------
+    def __repr__(self) -> str:
+        active = [e.name for e, _ in self.active()]
+        return f"DrumModel({self.params.name!r}, effects={active})"
+
+    def neutral_values(self) -> dict[str, float]:
+        return {f"{e.name}.{p.name}": p.neutral for e in self.effects for p in e.parameters}
+
+    def effect_values(self, effect: str) -> dict[str, float]:
+        return {k.split(".", 1)[1]: v for k, v in self.values.items() if k.split(".", 1)[0] == effect}
+
+    def active(self, values: dict | None = None) -> list[tuple[Effect, dict]]:
+        """The effects whose values are not all neutral, each with its parameter dict."""
+        vals = self.values if values is None else {**self.values, **values}
+        out = []
+        for e in self.effects:
+            v = {p.name: vals.get(f"{e.name}.{p.name}", p.neutral) for p in e.parameters}
+            if not _all_neutral(e, v):
+                out.append((e, v))
+        return out
+
+    @property
+    def has_effects(self) -> bool:
+        """True if any effect changes the paper's chain (the closed-form hold check no longer applies)."""
+        return bool(self.active())
+
+    def with_params(self, params: BrakeParameters) -> "DrumModel":
+        return self._copy(params=params)
+
+    def replace_params(self, **changes) -> "DrumModel":
+        return self.with_params(self.params.replace(**changes))
+
+    def with_values(self, values: dict) -> "DrumModel":
+        return self._copy(values={**self.values, **values})
+
+    def _copy(self, **kw) -> "DrumModel":
+        args = dict(params=self.params, effects=self.effects, values=self.values, covariance=self.covariance,
+                    provenance=self.provenance, base=self.base, effect_files=self.effect_files)
+        same_name = self.name == (self.params.name + "".join(" + " + e.name for e in self.effects))
+        args.update(kw)
+        return DrumModel(**args, name=None if same_name else self.name)
+
+    def fitted_values(self) -> dict[str, float]:
+        """Every value a calibration may move: μ_d, h and the effects' parameters."""
+        return {"mu_drum": self.params.mu_drum, "heat_transfer_W_m2K": self.params.heat_transfer_W_m2K,
+                **self.values}
+
+    def bounds(self, name: str) -> tuple[float, float]:
+        """Physical bounds of a free parameter (baseline or ``effect.parameter``)."""
+        if name in BASELINE_BOUNDS:
+            lo, hi = BASELINE_BOUNDS[name]
+            if name == "mu_drum":   # never enter the self-locking region (eqs. 18–21)
+                p = self.params
+                hi = min(hi, 0.95 * p.shoe_arm_normal_m / max(p.shoe_arm_friction_m, 1e-12))
+            return lo, hi
+        eff, par = name.split(".", 1)
+        spec = self.effect(eff).parameter(par)
+        return spec.lower, spec.upper
+
+    def unit(self, name: str) -> str:
+        if name in BASELINE_UNITS:
+            return BASELINE_UNITS[name]
+        eff, par = name.split(".", 1)
+        return self.effect(eff).parameter(par).unit
+
+    def effect(self, name: str) -> Effect:
+        for e in self.effects:
+            if e.name == name:
+                return e
+        raise UserError(f"the model has no effect '{name}'; its effects are: "
+                        + (", ".join(e.name for e in self.effects) or "none"))
+
+    def with_draw(self, draw: dict) -> "DrumModel":
+        """This model with some fitted values replaced (``mu_drum``, ``heat_transfer_W_m2K``, effect values)."""
+        base = {k: v for k, v in draw.items() if k in BASELINE_FREE}
+        eff = {k: v for k, v in draw.items() if k not in BASELINE_FREE}
+        out = self.replace_params(**base) if base else self
+        return out.with_values(eff) if eff else out
+
+    # -- the chain ---------------------------------------------------------------------
+    def state(self, time_s, hand_force_N, direction="downhill", *, mu_drum=None, initial_temp_C=None,
+              ambient_C=None, heat_transfer_W_m2K=None, test_index=None) -> ModelState:
+        """Inputs of the chain broadcast to one shape, as the effect hooks see them."""
+        p = self.params
+        sign = direction_to_sign(direction)
+        mu = p.mu_drum if mu_drum is None else mu_drum
+        t0 = p.initial_drum_temp_C if initial_temp_C is None else initial_temp_C
+        amb = p.ambient_temp_C if ambient_C is None else ambient_C
+        h = p.heat_transfer_W_m2K if heat_transfer_W_m2K is None else heat_transfer_W_m2K
+        arrays = [np.asarray(x, float) for x in (time_s, hand_force_N, sign, t0, amb)]
+        shape = np.broadcast_shapes(*(a.shape for a in arrays), np.shape(mu), np.shape(h))
+        t, f, s, t0b, ambb = (np.broadcast_to(a, shape) for a in arrays)
+        tid = None if test_index is None else np.broadcast_to(np.asarray(test_index), shape)
+        return ModelState(p, t, f, s, t0b, ambb, h, mu, test_index=tid)
+
+    def drum_temperature(self, time_s, *, initial_temp_C=None, ambient_C=None, heat_transfer_W_m2K=None,
+                         values: dict | None = None, state: ModelState | None = None, **state_kw) -> np.ndarray:
+        """Drum temperature over time, eq. (10) plus the effects' ``drum_temperature`` hooks [°C]."""
+        p = self.params
+        t0 = p.initial_drum_temp_C if initial_temp_C is None else np.asarray(initial_temp_C, float)
+        amb = p.ambient_temp_C if ambient_C is None else ambient_C
+        h = p.heat_transfer_W_m2K if heat_transfer_W_m2K is None else heat_transfer_W_m2K
+        tau = cooling.cooling_time_constant_s(p.drum_density_kg_m3, p.drum_specific_heat_J_kgK, p.drum_volume_m3,
+                                              h, p.cooled_area_m2)
+        temp = cooling.drum_temperature_C(time_s, t0, amb, tau)
+        hooks = [(e, v) for e, v in self.active(values) if e.touches_temperature()]
+        if not hooks:
+            return temp
+        st = state or self.state(time_s, state_kw.pop("hand_force_N", 0.0), state_kw.pop("direction", "downhill"),
+                                 initial_temp_C=t0, ambient_C=amb, heat_transfer_W_m2K=h, **state_kw)
+        temp = np.broadcast_to(temp, st.time_s.shape)
+        for e, v in hooks:
+            temp = _call_hook(e, "drum_temperature", st, temp, v)
+        return temp
+
+    def evaluate(self, time_s: ArrayLike, hand_force_N: ArrayLike, direction="downhill", *,
+                 mu_drum: ArrayLike | None = None, gap_m: ArrayLike | None = None,
+                 initial_temp_C: ArrayLike | None = None, ambient_C: ArrayLike | None = None,
+                 heat_transfer_W_m2K: ArrayLike | None = None, test_index: ArrayLike | None = None,
+                 values: dict | None = None, drum_temp_C: ArrayLike | None = None) -> BrakeSeries:
+        """The drum chain (module docstring, steps 1–8) for every element of the broadcast inputs.
+
+        *direction*: ``"downhill"``/``"uphill"`` or numeric signs; *values*: effect values that
+        override the model's for this call (fits); *drum_temp_C*: a drum temperature already
+        computed with the same inputs (fits reuse the temperature channel).
+        """
+        active = self.active(values)
+        if not active:
+            return self._baseline(time_s, hand_force_N, direction, mu_drum, gap_m, initial_temp_C, ambient_C,
+                                  heat_transfer_W_m2K, drum_temp_C)
+        return self._with_effects(active, time_s, hand_force_N, direction, mu_drum, gap_m, initial_temp_C,
+                                  ambient_C, heat_transfer_W_m2K, test_index, values, drum_temp_C)
+
+    def _baseline(self, time_s, hand_force_N, direction, mu_drum, gap_m, initial_temp_C, ambient_C,
+                  heat_transfer_W_m2K, drum_temp_C) -> BrakeSeries:
+        """The paper's chain, Ishak et al. 2018 eqs. (10), (16a/b), (17b), (18)–(21), (24)."""
+        p = self.params
+        mu = p.mu_drum if mu_drum is None else np.asarray(mu_drum, float)
+        t0 = p.initial_drum_temp_C if initial_temp_C is None else np.asarray(initial_temp_C, float)
+        temp = (self.drum_temperature(time_s, initial_temp_C=t0, ambient_C=ambient_C,
+                                      heat_transfer_W_m2K=heat_transfer_W_m2K)
+                if drum_temp_C is None else np.asarray(drum_temp_C, float))
+        dT = cooling.temperature_change_K(temp, t0)                                           # ΔT, eq. (16)
+        u6 = drum.lining_displacement_m(hand_force_N, p.u6_slope_m_per_N, p.u6_offset_m)   # eq. (24)
+        f0 = self.unenergised_force(u6, dT, p.lining_modulus_Pa, p.gap_m if gap_m is None else np.asarray(gap_m, float))
+        factor = drum.self_energising_factor(mu, direction_to_sign(direction), p.shoe_arm_normal_m,
+                                             p.shoe_arm_friction_m)                        # eqs. (18)–(21)
+        f_l = drum.normal_force_N(f0, factor)
+        torque = drum.brake_torque_Nm(mu, f_l, p.drum_radius_m)                             # eq. (17b)
+        shape = np.broadcast_shapes(np.shape(time_s), np.shape(temp), np.shape(f_l))
+        b = lambda a: np.broadcast_to(np.asarray(a, float), shape)  # noqa: E731
+        return BrakeSeries(time_s=b(time_s), drum_temp_C=b(temp), normal_force_N=b(f_l), torque_Nm=b(torque),
+                           self_locked=np.broadcast_to(np.isinf(factor), shape), lining_temp_C=b(temp))
+
+    def unenergised_force(self, u6, dT, lining_modulus_Pa=None, gap_m=None):
+        """Clamp force before self-energising, eq. (16a) (gap 0) or (16b), with the set's material values [N]."""
+        p = self.params
+        lining_modulus_Pa = p.lining_modulus_Pa if lining_modulus_Pa is None else lining_modulus_Pa
+        gap_m = p.gap_m if gap_m is None else gap_m
+        return drum.normal_force_unenergised_N(
+            u6, dT, drum_area_m2=p.drum_area_m2, drum_modulus_Pa=p.drum_modulus_Pa, lining_area_m2=p.lining_area_m2,
+            lining_modulus_Pa=lining_modulus_Pa, drum_expansion_per_K=p.drum_expansion_per_K,
+            lining_expansion_per_K=p.lining_expansion_per_K, drum_thickness_m=p.drum_thickness_m,
+            lining_thickness_m=p.lining_thickness_m, gap_m=gap_m)
+
+    def _with_effects(self, active, time_s, hand_force_N, direction, mu_drum, gap_m, initial_temp_C, ambient_C,
+                      heat_transfer_W_m2K, test_index, values, drum_temp_C) -> BrakeSeries:
+        p = self.params
+        st = self.state(time_s, hand_force_N, direction, mu_drum=mu_drum, initial_temp_C=initial_temp_C,
+                        ambient_C=ambient_C, heat_transfer_W_m2K=heat_transfer_W_m2K, test_index=test_index)
+        shape = st.time_s.shape
+        for e, v in active:                       # effect values may be arrays (uncertainty draws)
+            shape = np.broadcast_shapes(shape, *(np.shape(x) for x in v.values()))
+        if shape != st.time_s.shape:
+            st = self.state(*(np.broadcast_to(a, shape) for a in (st.time_s, st.hand_force_N, st.sign)),
+                            mu_drum=st.mu_drum, initial_temp_C=np.broadcast_to(st.initial_temp_C, shape),
+                            ambient_C=np.broadcast_to(st.ambient_C, shape),
+                            heat_transfer_W_m2K=st.heat_transfer_W_m2K,
+                            test_index=None if st.test_index is None else np.broadcast_to(st.test_index, shape))
+        temp = (self.drum_temperature(st.time_s, initial_temp_C=st.initial_temp_C, ambient_C=st.ambient_C,
+                                      heat_transfer_W_m2K=st.heat_transfer_W_m2K, values=values, state=st)
+                if drum_temp_C is None else drum_temp_C)
+        st.drum_temp_C = np.broadcast_to(np.asarray(temp, float), shape)
+        lining = st.drum_temp_C
+        for e, v in active:                                                     # step 2
+            lining = _call_hook(e, "lining_temperature", st, lining, v)
+        st.lining_temp_C = lining
+        dT = cooling.temperature_change_K(st.drum_temp_C, st.initial_temp_C)   # ΔT of the drum, eq. (16)
+        u6 = drum.lining_displacement_m(st.hand_force_N, p.u6_slope_m_per_N, p.u6_offset_m)   # eq. (24)
+        modulus = p.lining_modulus_Pa
+        gap = p.gap_m if gap_m is None else np.asarray(gap_m, float)
+        for e, v in active:                                                     # steps 3–4
+            u6 = _call_hook(e, "displacement", st, u6, v)
+            modulus = _call_hook(e, "lining_modulus", st, modulus, v, scalar_ok=True)
+            gap = _call_hook(e, "gap", st, gap, v, scalar_ok=True)
+        f0 = self.unenergised_force(u6, dT, modulus, gap)                            # step 5, eq. (16a/b)
+        k_d = p.drum_area_m2 * p.drum_modulus_Pa
+        k_l = p.lining_area_m2 * np.asarray(modulus)
+        l_eff = p.lining_thickness_m + np.asarray(gap)
+        den = k_l * p.drum_thickness_m + k_d * l_eff
+        st.extra["series_stiffness_N_per_m"] = k_d * k_l / den
+        if lining is not st.drum_temp_C:   # the lining's own thermal strain α_l·ΔT_l replaces α_l·ΔT_d (eq. 16)
+            f0 = f0 + k_d * k_l * p.lining_expansion_per_K * l_eff * (lining - st.drum_temp_C) / den
+        for e, v in active:
+            f0 = _call_hook(e, "clamp_force", st, f0, v)
+        mu = np.broadcast_to(np.asarray(st.mu_drum, float), shape)
+        for e, v in active:                                                     # step 6
+            mu = _call_hook(e, "friction", st, mu, v)
+        factor = drum.self_energising_factor(mu, st.sign, p.shoe_arm_normal_m, p.shoe_arm_friction_m)  # step 7
+        f_l = drum.normal_force_N(f0, factor)
+        torque = drum.brake_torque_Nm(mu, f_l, p.drum_radius_m)                 # step 8, eq. (17b)
+        b = lambda a: np.broadcast_to(np.asarray(a, float), shape)  # noqa: E731
+        return BrakeSeries(time_s=b(st.time_s), drum_temp_C=b(st.drum_temp_C), normal_force_N=b(f_l),
+                           torque_Nm=b(torque), self_locked=np.broadcast_to(np.isinf(factor), shape),
+                           lining_temp_C=b(lining))
+
+
+def _all_neutral(effect: Effect, v: dict) -> bool:
+    """Neutral test that tolerates array values (uncertainty draws): neutral only if every element is."""
+    if all(np.ndim(x) == 0 for x in v.values()):
+        return bool(effect.is_neutral({k: float(x) for k, x in v.items()}))
+    return False
+
+
+def _call_hook(effect: Effect, hook: str, state: ModelState, x, v: dict, scalar_ok: bool = False):
+    """Call one effect hook as untrusted code: an exception, a wrong shape or a non-finite value is a UserError."""
+    try:
+        out = getattr(effect, hook)(state, x, v)
+    except UserError:
+        raise
+    except Exception as exc:  # a plugin's bug must not become a traceback
+        raise UserError(f"{_where(effect)}: hook '{hook}' raised {type(exc).__name__}: {exc}; fix the effect's "
+                        f"code") from None
+    try:
+        arr = np.asarray(out, float)
+    except (TypeError, ValueError):
+        raise UserError(f"{_where(effect)}: hook '{hook}' returned {type(out).__name__}, not numbers; return an "
+                        f"array shaped like its input") from None
+    if not (scalar_ok and arr.ndim == 0):
+        try:
+            np.broadcast_shapes(arr.shape, state.time_s.shape)
+            ok = arr.size in (1, state.time_s.size) or arr.shape == np.broadcast_shapes(arr.shape,
+                                                                                            state.time_s.shape)
+        except ValueError:
+            ok = False
+        if not ok:
+            raise UserError(f"{_where(effect)}: hook '{hook}' returned shape {arr.shape} for {state.time_s.shape} "
+                            f"samples; return an array shaped like its input")
+    if not np.all(np.isfinite(arr)):
+        raise UserError(f"{_where(effect)}: hook '{hook}' returned NaN or inf; return finite values (check the "
+                        f"effect's formula and its parameter bounds)")
+    return out
+
+
+def _where(effect: Effect) -> str:
+    src = getattr(type(effect), "__rollaway_source__", None)
+    return f"effect '{effect.name}'" + (f" ({src})" if src else "")
+
+
+def as_model(model_or_params) -> DrumModel:
+    """A :class:`DrumModel` from a model, a parameter set, a set name or a file (None: the paper set)."""
+    if isinstance(model_or_params, DrumModel):
+        return model_or_params
+    if isinstance(model_or_params, BrakeParameters):
+        return DrumModel(model_or_params)
+    from rollaway.model_file import load_model
+    return load_model(model_or_params)
+
+
+__all__ = ["BrakeSeries", "Covariance", "DrumModel", "as_model", "direction_to_sign"]
