@@ -10,8 +10,10 @@ Two conditions, both from a static balance:
 
 Grades are signed: a negative grade flips the direction the car faces relative to
 the fall line (a car "facing downhill" on −20 % faces uphill on 20 %).
-Everything is vectorised; closed forms replace scans (the baseline is affine in
-u_6 and ΔT, and ΔT(t) is monotone).
+Everything is vectorised.  Every function takes a parameter set or a
+:class:`~rollaway.model.DrumModel`.  For the paper's chain closed forms replace scans (it is
+affine in u_6 and ΔT, and ΔT(t) is monotone); a model with effects is solved numerically
+(:mod:`rollaway.hold_numeric`: dense evaluation plus bracketing refinement).
 """
 from __future__ import annotations
 
@@ -20,9 +22,10 @@ from dataclasses import dataclass
 import numpy as np
 from numpy.typing import ArrayLike
 
-from rollaway.brake import drum_brake, drum_temperature, shoe_factor, unenergised_force
+from rollaway.brake import drum_temperature, shoe_factor, unenergised_force
 from rollaway.errors import UserError
-from rollaway.parameters import BrakeParameters, paper
+from rollaway.model import DrumModel, as_model
+from rollaway.parameters import BrakeParameters
 from rollaway.physics import drum as drum_phys
 from rollaway.physics import vehicle
 
@@ -93,12 +96,36 @@ def _direction_of(sign):
     return np.where(np.asarray(sign) > 0, "downhill", "uphill")
 
 
-def total_mass_kg(params: BrakeParameters, occupants: ArrayLike = 1) -> np.ndarray:
+Model = BrakeParameters | DrumModel
+NUMERIC_HORIZON_S = 7 * 86400.0   # the numeric slip time is sought up to this horizon when none is given
+
+
+def _params(model_or_params) -> BrakeParameters:
+    return model_or_params.params if isinstance(model_or_params, DrumModel) else model_or_params
+
+
+def _numeric(model_or_params) -> DrumModel | None:
+    """The model if it has active effects (closed forms do not apply), else None."""
+    m = model_or_params if isinstance(model_or_params, DrumModel) else None
+    return m if m is not None and m.has_effects else None
+
+
+def _margin_function(model: DrumModel, hand_force_N, grade_pct, direction, occupants, mu_drum, gap_m,
+                     initial_temp_C):
+    from rollaway.hold_numeric import MarginFunction
+    g, sign = _effective(grade_pct, direction)
+    t_req = required_torque(model.params, g, occupants)
+    return MarginFunction(model, validate_hand_force(hand_force_N), sign, t_req, mu_drum, gap_m, initial_temp_C)
+
+
+def total_mass_kg(params: Model, occupants: ArrayLike = 1) -> np.ndarray:
+    params = _params(params)
     return vehicle.vehicle_mass_kg(params.vehicle_mass_kg, validate_occupants(occupants), params.occupant_mass_kg)
 
 
 def required_torque(params: BrakeParameters, grade_pct: ArrayLike, occupants: ArrayLike = 1) -> np.ndarray:
     """T_req at the rear axle, eq. (23) [N·m] (|grade| used)."""
+    params = _params(params)
     g = np.abs(validate_grade(grade_pct))
     return vehicle.required_torque_Nm(total_mass_kg(params, occupants), g, params.wheel_radius_m,
                                       params.gravity_m_s2)
@@ -107,6 +134,7 @@ def required_torque(params: BrakeParameters, grade_pct: ArrayLike, occupants: Ar
 def tyre_adhesion_margin(params: BrakeParameters, grade_pct: ArrayLike, direction="downhill",
                          occupants: ArrayLike = 1, tyre_road_mu: ArrayLike | None = None) -> np.ndarray:
     """μ_r·N_r / (m g sin θ): ≥ 1 when the rear tyres can carry the slope force (inf on the flat)."""
+    params = _params(params)
     g, sign = _effective(grade_pct, direction)
     n = validate_occupants(occupants)
     m = total_mass_kg(params, n)
@@ -128,8 +156,8 @@ def hold_margin(params: BrakeParameters, time_s: ArrayLike, hand_force_N: ArrayL
                 initial_temp_C=None) -> np.ndarray:
     """Brake hold margin 2·T_gen(t)/T_req over time (inf on the flat or for a self-locked shoe)."""
     g, sign = _effective(grade_pct, direction)
-    series = drum_brake(params, time_s=time_s, hand_force_N=validate_hand_force(hand_force_N),
-                        direction=_direction_of(sign), mu_drum=mu_drum, gap_m=gap_m, initial_temp_C=initial_temp_C)
+    series = as_model(params).evaluate(time_s, validate_hand_force(hand_force_N), sign, mu_drum=mu_drum, gap_m=gap_m,
+                                       initial_temp_C=initial_temp_C)
     t_req = required_torque(params, g, occupants)
     with np.errstate(divide="ignore", invalid="ignore"):
         return np.where(t_req > 0, 2.0 * series.torque_Nm / np.where(t_req > 0, t_req, 1.0), np.inf)
@@ -143,6 +171,12 @@ def min_brake_margin(params: BrakeParameters, hand_force_N: ArrayLike, grade_pct
     Eq. (16) is affine in ΔT and ΔT(t) of eq. (10) is monotone, so the torque is monotone in
     time and the least margin is at t = 0 or t = duration_s (no sampling needed).
     """
+    model = _numeric(params)
+    if model is not None:
+        from rollaway.hold_numeric import least_margin
+        fn = _margin_function(model, hand_force_N, grade_pct, direction, occupants, mu_drum, gap_m, initial_temp_C)
+        shape = np.broadcast_shapes(fn.shape, np.shape(duration_s))
+        return least_margin(fn, np.broadcast_to(duration_s, fn.shape).ravel()).reshape(shape)
     args = (hand_force_N, grade_pct, direction, occupants, mu_drum, gap_m, initial_temp_C)
     return np.minimum(hold_margin(params, 0.0, *args), hold_margin(params, duration_s, *args))
 
@@ -162,8 +196,16 @@ def time_to_slip_s(params: BrakeParameters, hand_force_N: ArrayLike, grade_pct: 
 
     0 if it never held, NaN if it holds up to *horizon_s* (and for ever if the drum
     cools towards a holding state).  Solved in closed form: eq. (16) is affine in ΔT,
-    eq. (10) inverts to t = −τ ln((T* − T_amb)/(T_0 − T_amb)).
+    eq. (10) inverts to t = −τ ln((T* − T_amb)/(T_0 − T_amb)).  With effects: numeric, up to
+    *horizon_s* (or :data:`NUMERIC_HORIZON_S`).
     """
+    model = _numeric(params)
+    if model is not None:
+        from rollaway.hold_numeric import first_slip_time
+        fn = _margin_function(model, hand_force_N, grade_pct, direction, occupants, mu_drum, gap_m, initial_temp_C)
+        horizon = horizon_s if np.isfinite(horizon_s) else NUMERIC_HORIZON_S
+        return first_slip_time(fn, horizon).reshape(fn.shape)
+    params = _params(params)
     g, sign = _effective(grade_pct, direction)
     f = validate_hand_force(hand_force_N)
     mu = params.mu_drum if mu_drum is None else np.asarray(mu_drum, float)
@@ -194,8 +236,16 @@ def minimum_hand_force_N(params: BrakeParameters, grade_pct: ArrayLike, directio
     Solved, not scanned: F_l0 is affine in u_6 (eq. 16), u_6 affine in F_hb (eq. 24),
     ΔT(t) monotone (eq. 10), so the worst instant is t = 0 or t = duration.  The tyre
     condition does not depend on hand force; check it with :func:`tyre_adhesion_margin`.
-    Returns 0 if no force is needed, ``inf`` if no force can hold (μ_d = 0).
+    Returns 0 if no force is needed, ``inf`` if no force can hold (μ_d = 0).  With effects:
+    numeric root of the least margin in the hand force.
     """
+    model = _numeric(params)
+    if model is not None:
+        from rollaway.hold_numeric import least_hand_force
+        fn = _margin_function(model, 0.0, grade_pct, direction, occupants, mu_drum, gap_m, initial_temp_C)
+        shape = np.broadcast_shapes(fn.shape, np.shape(duration_s))
+        return least_hand_force(fn, np.broadcast_to(duration_s, fn.shape).ravel()).reshape(shape)
+    params = _params(params)
     g, sign = _effective(grade_pct, direction)
     mu = params.mu_drum if mu_drum is None else np.asarray(mu_drum, float)
     t0 = params.initial_drum_temp_C if initial_temp_C is None else np.asarray(initial_temp_C, float)

@@ -355,15 +355,14 @@ def _call_hook(effect: Effect, hook: str, state: ModelState, x, v: dict, scalar_
                         f"array shaped like its input") from None
     if not (scalar_ok and arr.ndim == 0):
         try:
-            np.broadcast_shapes(arr.shape, state.time_s.shape)
-            ok = arr.size in (1, state.time_s.size) or arr.shape == np.broadcast_shapes(arr.shape,
-                                                                                            state.time_s.shape)
+            ok = np.broadcast_shapes(arr.shape, state.time_s.shape) == state.time_s.shape
         except ValueError:
             ok = False
         if not ok:
             raise UserError(f"{_where(effect)}: hook '{hook}' returned shape {arr.shape} for {state.time_s.shape} "
                             f"samples; return an array shaped like its input")
-    if not np.all(np.isfinite(arr)):
+    finite_in = np.isfinite(state.time_s) & np.isfinite(np.asarray(x, float))   # garbage in is not the hook's
+    if not np.all(np.isfinite(arr) | ~finite_in):
         raise UserError(f"{_where(effect)}: hook '{hook}' returned NaN or inf; return finite values (check the "
                         f"effect's formula and its parameter bounds)")
     return out
