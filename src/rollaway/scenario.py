@@ -12,7 +12,7 @@ Example (``scenarios/fmvss135-uphill.toml``)::
     initial_drum_temp_C = 200     # optional; default: the parameter set's T_0
     mu_drum = 0.4                 # optional; default: the parameter set's μ_d
     tyre_road_mu = 0.8            # optional; default: the parameter set's μ_r
-    params = "paper"              # optional; a set name or a TOML file (relative to this file)
+    params = "paper"              # optional; a set name, a parameter file or a model file (relative to this file)
     regulation = "fmvss135"       # optional tag: the preset this scenario implements
 
     [parameters]                  # optional: override any parameter of the set
@@ -29,7 +29,8 @@ from pathlib import Path
 
 from rollaway.errors import UserError, check_choice, read_toml, suggest
 from rollaway.hold import MAX_OCCUPANTS
-from rollaway.parameters import BrakeParameters, load_parameters, parameters_from_mapping
+from rollaway.model import DrumModel
+from rollaway.parameters import BrakeParameters, parameters_from_mapping
 from rollaway.physics.drum import DIRECTIONS
 from rollaway.regulations import PRESETS
 
@@ -46,6 +47,13 @@ class Scenario:
     description: str = ""
     regulation: str | None = None
     source: str | None = None          # file it was read from
+    model: DrumModel | None = field(default=None, repr=False, compare=False)   # the drum model (params + effects)
+
+    def __post_init__(self):
+        if self.model is None:
+            object.__setattr__(self, "model", DrumModel(self.params))
+        elif self.model.params is not self.params:      # parameters changed: same effects, new set
+            object.__setattr__(self, "model", self.model.with_params(self.params))
 
     @property
     def mu_drum(self) -> float:
@@ -114,21 +122,28 @@ def scenario_from_mapping(data: dict, where: str = "scenario", base_dir: Path | 
     src = data.get("params")
     if src is not None and base_dir is not None and src.endswith(".toml"):
         src = str((base_dir / src))
-    params = load_parameters(src)
+    from rollaway.model_file import load_model
+    try:
+        model = load_model(src)
+    except UserError as exc:
+        if src is None or str(exc).startswith(str(src)):
+            raise UserError(f"{where}: key 'params' = {data['params']!r}: {exc}") from None
+        raise
+    params = model.params
     overrides = dict(data.get("parameters", {}))
     for key in ("initial_drum_temp_C", "mu_drum", "tyre_road_mu"):
         if key in data:
             overrides[key] = data[key]
     if overrides:
         params = parameters_from_mapping({**params.as_dict(), **overrides}, where=where)
-        params = dataclasses.replace(params, name=load_parameters(src).name + "+overrides")
+        params = dataclasses.replace(params, name=model.params.name + "+overrides")
     reg = data.get("regulation")
     if reg is not None:
         check_choice(reg, PRESETS, f"regulation in {where} (key 'regulation')")
     s = Scenario(name=data["name"], grade_pct=float(data["grade_pct"]), direction=data["direction"],
                  occupants=int(data["occupants"]), hand_force_N=float(data["hand_force_N"]),
                  duration_s=float(data["duration_s"]), params=params, description=data.get("description", ""),
-                 regulation=reg, source=where)
+                 regulation=reg, source=where, model=model.with_params(params))
     _validate(s, where)
     return s
 

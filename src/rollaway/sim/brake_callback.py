@@ -3,7 +3,9 @@
 Each rear wheel gets one drum (the hand lever drives both through an equaliser, eq. 24 is
 per drum), so its hinge's ``dof_frictionloss`` is the torque of one drum, eq. (17b):
 T_gen(t) = μ_d · F_l(t) · r_d with F_l from eqs. (16a/b), (18)–(21), (24) and the drum
-temperature from the cooling law, eq. (10) — all from :func:`rollaway.brake.drum_brake`.
+temperature from the cooling law, eq. (10) — all from the scenario's drum model
+(:meth:`rollaway.model.DrumModel.evaluate`, effects included), so the simulated car feels
+whatever the model knows (e.g. a calibrated clamp-force loss).
 
 Direction (eqs. 18–21): the shoe's self-energising depends on the sense of the torque the
 brake resists.  A wheel driven *forward* (positive hinge rotation about the car's +y axis,
@@ -23,7 +25,6 @@ from __future__ import annotations
 import mujoco
 import numpy as np
 
-from rollaway.brake import drum_brake
 from rollaway.errors import UserError
 from rollaway.hold import validate_hand_force
 from rollaway.scenario import Scenario
@@ -43,8 +44,8 @@ class BrakeController:
         n = int(np.ceil(horizon_s / self.period_s)) + 2
         self.time_s = np.arange(n) * self.period_s
         p, force = scenario.params, float(validate_hand_force(scenario.hand_force_N))
-        fwd = drum_brake(p, time_s=self.time_s, hand_force_N=force, direction="downhill")   # eq. (18)
-        rev = drum_brake(p, time_s=self.time_s, hand_force_N=force, direction="uphill")     # eq. (19)
+        fwd = scenario.model.evaluate(self.time_s, force, "downhill")   # eq. (18)
+        rev = scenario.model.evaluate(self.time_s, force, "uphill")     # eq. (19)
         for name, series in (("downhill", fwd), ("uphill", rev)):
             if np.any(series.self_locked):
                 raise UserError(f"{scenario.source or scenario.name}: the shoe self-locks when driven {name} with "

@@ -213,7 +213,7 @@ class _Run:
                                  held_end - 1)
             cap_roll = float(tr.capacity_Nm[held_end - 1].sum())
             dem_roll = info.demand_axle_Nm
-        t_slip = float(time_to_slip_s(sc.params, sc.hand_force_N, info.grade_pct, info.facing, sc.occupants,
+        t_slip = float(time_to_slip_s(sc.model, sc.hand_force_N, info.grade_pct, info.facing, sc.occupants,
                                       horizon_s=sc.duration_s))
         return SimResult(
             scenario=sc.name, mode=self.mode, outcome=oc.classify(t_roll is not None, slip or 0.0),

@@ -33,13 +33,23 @@ SIM_FIELDS = ("outcome", "rollaway_time_s", "max_displacement_m", "min_margin", 
 def scenario_to_dict(s: Scenario) -> dict:
     return {"name": s.name, "grade_pct": s.grade_pct, "direction": s.direction, "occupants": s.occupants,
             "hand_force_N": s.hand_force_N, "duration_s": s.duration_s, "description": s.description,
-            "regulation": s.regulation, "params": s.params.as_dict(), "params_name": s.params.name}
+            "regulation": s.regulation, "params": s.params.as_dict(), "params_name": s.params.name,
+            "effects": [e.name for e in s.model.effects], "effect_values": dict(s.model.values),
+            "effect_files": {e.name: getattr(type(e), "__rollaway_source__", None) for e in s.model.effects}}
 
 
 def scenario_from_dict(d: dict) -> Scenario:
+    """Rebuild a scenario in a worker (plugin effects are imported again from their files)."""
+    from rollaway.effects import available_effects, load_effect_file
+    from rollaway.model import DrumModel
+
     d = dict(d)
     params = BrakeParameters(**d.pop("params"), name=d.pop("params_name"))
-    return Scenario(params=params, **d)
+    effects, values, files = d.pop("effects", []), d.pop("effect_values", {}), d.pop("effect_files", {})
+    for name in effects:
+        if name not in available_effects() and files.get(name):
+            load_effect_file(files[name])
+    return Scenario(params=params, model=DrumModel(params, effects, values), **d)
 
 
 def make_task(point_id: str, base: dict, changes: dict) -> dict:

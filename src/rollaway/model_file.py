@@ -1,0 +1,228 @@
+"""Drum-model files: a parameter set plus effects, fitted values, covariance and provenance, as TOML.
+
+A model file is a parameter file (``extends`` + values that differ, see
+:mod:`rollaway.parameters`) with three optional tables::
+
+    extends = "paper"                 # the named set it extends
+    mu_drum = 0.381                   # values that differ from it
+
+    [effects.lining_creep]            # one table per effect: its parameter values
+    relaxed_fraction = 0.118
+    relaxation_time_s = 845.0
+    # plugin = "my_effect.py"         # an effect from a plugin file (path relative to this file)
+
+    [covariance]                      # of the fitted parameters (names + matrix, SI units)
+    names = ["mu_drum", "lining_creep.relaxed_fraction", ...]
+    matrix = [[...], ...]
+
+    [provenance]                      # where the values came from (free-form scalars)
+    data_file = "bench.csv"
+
+Every name is validated (unknown effect, parameter or table: an error naming the file and
+key, with the closest match); ``--params FILE.toml`` accepts a model file in every command.
+"""
+from __future__ import annotations
+
+import hashlib
+import math
+from datetime import date
+from pathlib import Path
+
+import numpy as np
+
+from rollaway.errors import UserError, read_toml, suggest
+from rollaway.model import BASELINE_FREE, Covariance, DrumModel
+from rollaway.parameters import PARAMETER_SETS, SPEC_BY_NAME, BrakeParameters, load_parameters, parameters_from_mapping
+
+TABLES = ("effects", "covariance", "provenance")
+
+
+def load_model(source: str | Path | None = None) -> DrumModel:
+    """A named set (``"paper"``), a parameter file or a model file as a :class:`DrumModel`."""
+    if source is None or str(source) in PARAMETER_SETS:
+        return DrumModel(load_parameters(source))
+    path = Path(str(source))
+    if path.suffix != ".toml" and not path.exists():
+        load_parameters(source)          # raises the "unknown parameter set" error with its hint
+    data = read_toml(path, "parameter or model file", "see 'rollaway params' for the keys")
+    return model_from_mapping(data, where=str(path), base_dir=path.parent)
+
+
+def model_from_mapping(data: dict, where: str = "model", base_dir: Path | None = None) -> DrumModel:
+    """Validate a parsed model file (see the module docstring) into a :class:`DrumModel`."""
+    data = dict(data)
+    tables = {k: data.pop(k) for k in TABLES if k in data}
+    for key, value in data.items():
+        if isinstance(value, dict):
+            raise UserError(f"{where}: unexpected table [{key}]{suggest(key, TABLES)}; a model file has top-level "
+                            f"'name = value' parameters and the tables [effects.NAME], [covariance], [provenance]")
+    params = parameters_from_mapping(data, where=where)
+    base = data.get("extends") if isinstance(data.get("extends"), str) else None
+    effects, values, files = _effects(tables.get("effects", {}), where, base_dir)
+    name = Path(where).stem if where.endswith(".toml") else None
+    model = DrumModel(params, effects, values, base=base, name=name, effect_files=files)
+    if "covariance" in tables:
+        model.covariance = _covariance(tables["covariance"], model, where)
+    if "provenance" in tables:
+        model.provenance = _provenance(tables["provenance"], where)
+    return model
+
+
+def _table(value, where: str, key: str) -> dict:
+    if not isinstance(value, dict):
+        raise UserError(f"{where}: '{key}' must be a table ([{key}] with 'name = value' lines), got {value!r}")
+    return value
+
+
+def _effects(table, where: str, base_dir: Path | None):
+    from rollaway.effects import available_effects, load_effect_file
+
+    table = _table(table, where, "effects")
+    effects, values, files = [], {}, {}
+    for name, entries in table.items():
+        entries = dict(_table(entries, where, f"effects.{name}"))
+        plugin = entries.pop("plugin", None)
+        if plugin is not None:
+            if not isinstance(plugin, str):
+                raise UserError(f"{where}: key 'effects.{name}.plugin' must be a quoted file path, got {plugin!r}")
+            path = Path(plugin) if base_dir is None or Path(plugin).is_absolute() else base_dir / plugin
+            try:
+                load_effect_file(path)
+            except UserError as exc:
+                raise UserError(f"{where}: key 'effects.{name}.plugin': {exc}") from None
+            files[name] = plugin
+        known = available_effects()
+        if name not in known:
+            raise UserError(f"{where}: unknown effect [effects.{name}]{suggest(name, known)}; run 'rollaway diagnose "
+                            f"--list-effects' for the catalogue, or add plugin = \"file.py\" to the table")
+        cls = known[name]
+        for key, value in entries.items():
+            spec = cls.parameter(key) if key in {p.name for p in cls.parameters} else None
+            if spec is None:
+                raise UserError(f"{where}: unknown key 'effects.{name}.{key}'"
+                                f"{suggest(key, [p.name for p in cls.parameters])}; the parameters of '{name}' are: "
+                                + ", ".join(p.name for p in cls.parameters))
+            v = _number(value, where, f"effects.{name}.{key}", spec.unit)
+            if not spec.lower <= v <= spec.upper:
+                raise UserError(f"{where}: key 'effects.{name}.{key}' = {value!r} is outside [{spec.lower:g}, "
+                                f"{spec.upper:g}] {spec.unit}; give a value within the effect's bounds")
+            values[f"{name}.{key}"] = v
+        effects.append(cls)
+    return effects, values, files
+
+
+def _number(value, where: str, key: str, unit: str = "") -> float:
+    if isinstance(value, bool) or not isinstance(value, (int, float)) or not math.isfinite(float(value)):
+        raise UserError(f"{where}: key '{key}' must be a finite number{f' in {unit}' if unit else ''}, got {value!r}")
+    return float(value)
+
+
+def _covariance(table, model: DrumModel, where: str) -> Covariance:
+    table = _table(table, where, "covariance")
+    for key in table:
+        if key not in ("names", "matrix"):
+            raise UserError(f"{where}: unknown key 'covariance.{key}'{suggest(key, ['names', 'matrix'])}; "
+                            f"[covariance] has 'names' and 'matrix'")
+    names, matrix = table.get("names"), table.get("matrix")
+    if not isinstance(names, list) or not all(isinstance(n, str) for n in names) or not names:
+        raise UserError(f"{where}: key 'covariance.names' must be a list of parameter names, e.g. "
+                        f"[\"mu_drum\", \"lining_creep.relaxed_fraction\"]")
+    fitted = model.fitted_values()
+    for n in names:
+        if n not in fitted:
+            raise UserError(f"{where}: key 'covariance.names' names '{n}'{suggest(n, fitted)}, which is not a value "
+                            f"of this model; use mu_drum, heat_transfer_W_m2K or EFFECT.PARAMETER of its effects")
+    if len(set(names)) != len(names):
+        raise UserError(f"{where}: key 'covariance.names' lists a name twice; name each parameter once")
+    ok = isinstance(matrix, list) and len(matrix) == len(names) and all(
+        isinstance(r, list) and len(r) == len(names) for r in matrix)
+    if not ok:
+        raise UserError(f"{where}: key 'covariance.matrix' must be a {len(names)}×{len(names)} list of rows, one per "
+                        f"name")
+    m = np.array([[_number(x, where, f"covariance.matrix[{i}][{j}]") for j, x in enumerate(r)]
+                  for i, r in enumerate(matrix)])
+    if not np.allclose(m, m.T, rtol=1e-6, atol=0.0):
+        raise UserError(f"{where}: key 'covariance.matrix' is not symmetric; a covariance matrix equals its "
+                        f"transpose")
+    scale = np.sqrt(np.clip(np.diag(m), 0, None))
+    if np.any(np.diag(m) < 0) or np.min(np.linalg.eigvalsh(m / np.outer(scale + 1e-300, scale + 1e-300))) < -1e-8:
+        raise UserError(f"{where}: key 'covariance.matrix' is not positive semi-definite; check the values (a "
+                        f"variance is negative or a correlation exceeds 1)")
+    return Covariance(tuple(names), m)
+
+
+def _provenance(table, where: str) -> dict:
+    table = _table(table, where, "provenance")
+    for key, value in table.items():
+        if isinstance(value, (dict, list)):
+            raise UserError(f"{where}: key 'provenance.{key}' must be a single value (text, number or date)")
+    return dict(table)
+
+
+# -- writing -----------------------------------------------------------------------------------
+def file_sha256(path: str | Path) -> str:
+    h = hashlib.sha256()
+    with open(path, "rb") as fh:
+        for block in iter(lambda: fh.read(1 << 20), b""):
+            h.update(block)
+    return h.hexdigest()
+
+
+def provenance_for(data_path: str | Path, *, rows: int, tests: int, rmse: dict, command: str) -> dict:
+    """The provenance table of a model fitted on a data file."""
+    from rollaway import __version__
+    return {"data_file": Path(data_path).name, "data_sha256": file_sha256(data_path), "rows": int(rows),
+            "tests": int(tests), **{k: float(v) for k, v in rmse.items()}, "command": command,
+            "date": date.today().isoformat(), "rollaway_version": __version__}
+
+
+def _value(v) -> str:
+    """One TOML value on one line (lists inline); strings escaped by tomli-w."""
+    import tomli_w
+    if isinstance(v, (list, tuple)):
+        return "[" + ", ".join(_value(x) for x in v) + "]"
+    return tomli_w.dumps({"x": v}).split("=", 1)[1].strip()
+
+
+def model_to_toml(model: DrumModel, comment: str = "") -> str:
+    """The model as a model file a person can read and edit (round-trips through :func:`load_model`)."""
+    base_name = model.base if model.base in PARAMETER_SETS else "paper"
+    base = BrakeParameters(**PARAMETER_SETS[base_name], name=base_name)
+    se = model.covariance.stderr if model.covariance is not None else {}
+    lines = ["# rollaway drum model: parameter set + effects + fitted values (+ covariance, provenance).",
+             "# Load it anywhere with --params THIS_FILE.toml; edit values freely (they are validated on load).",
+             *(f"# {c}" for c in comment.splitlines() if c.strip()), "",
+             f"extends = {_value(base_name)}"]
+    for key, v in model.params.as_dict().items():
+        if v != getattr(base, key):
+            unc = f" ± {se[key]:.3g}" if key in se else ""
+            lines.append(f"{key} = {_value(v):<24} # [{SPEC_BY_NAME[key].unit}]{unc}")
+    for e in model.effects:
+        lines += ["", f"[effects.{e.name}]", f"# {e.summary}"]
+        if e.name in model.effect_files:
+            lines.append(f"plugin = {_value(model.effect_files[e.name])}")
+        for p in e.parameters:
+            key = f"{e.name}.{p.name}"
+            unc = f" ± {se[key]:.3g}" if key in se else ""
+            lines.append(f"{p.name} = {_value(float(model.values[key])):<24} # [{p.unit}]{unc}")
+    if model.covariance is not None:
+        c = model.covariance
+        lines += ["", "[covariance]", "# of the fitted parameters, in their units; row/column order = names",
+                  f"names = {_value(list(c.names))}", "matrix = ["]
+        lines += [f"  {_value([float(x) for x in row])}," for row in c.matrix]
+        lines.append("]")
+    if model.provenance:
+        lines += ["", "[provenance]"]
+        lines += [f"{k} = {_value(v)}" for k, v in model.provenance.items()]
+    return "\n".join(lines) + "\n"
+
+
+def save_model(model: DrumModel, path: str | Path, comment: str = "") -> Path:
+    """Write :func:`model_to_toml` to *path* (its folder is created)."""
+    from rollaway.errors import ensure_parent_dir
+    p = ensure_parent_dir(path, "--save-model")
+    p.write_text(model_to_toml(model, comment), encoding="utf-8")
+    return p
+
+
+__all__ = ["BASELINE_FREE", "load_model", "model_from_mapping", "model_to_toml", "provenance_for", "save_model"]
