@@ -31,7 +31,8 @@ _TOL = dict(xrtol=1e-12, xatol=1e-9)
 class MarginFunction:
     """Brake margin 2·T_gen/T_req of P points as an elementwise function of (time, point index)."""
 
-    def __init__(self, model: DrumModel, hand_force_N, sign, t_req_Nm, mu_drum, gap_m, initial_temp_C):
+    def __init__(self, model: DrumModel, hand_force_N, sign, t_req_Nm, mu_drum, gap_m, initial_temp_C,
+                 heat_transfer_W_m2K=None, values: dict | None = None):
         p = model.params
         self.model = model
         shape = np.broadcast_shapes(*(np.shape(x) for x in (hand_force_N, sign, t_req_Nm, mu_drum, gap_m,
@@ -43,6 +44,8 @@ class MarginFunction:
         self.mu = arr(mu_drum, p.mu_drum)
         self.gap = arr(gap_m, p.gap_m)
         self.t0 = arr(initial_temp_C, p.initial_drum_temp_C)
+        self.h = arr(heat_transfer_W_m2K, p.heat_transfer_W_m2K)
+        self.values = {k: arr(v, 0.0) for k, v in (values or {}).items()}   # per-point effect values (draws)
         self.shape = shape
 
     def __len__(self) -> int:
@@ -53,7 +56,8 @@ class MarginFunction:
         i = np.asarray(index, int)
         f = self.force[i] if force_N is None else force_N
         s = self.model.evaluate(time_s, f, self.sign[i], mu_drum=self.mu[i], gap_m=self.gap[i],
-                                initial_temp_C=self.t0[i])
+                                initial_temp_C=self.t0[i], heat_transfer_W_m2K=self.h[i],
+                                values={k: v[i] for k, v in self.values.items()} or None)
         with np.errstate(divide="ignore", invalid="ignore"):
             return np.where(self.t_req[i] > 0, 2.0 * s.torque_Nm / np.where(self.t_req[i] > 0, self.t_req[i], 1.0),
                             np.inf)
@@ -112,7 +116,7 @@ def first_slip_time(fn: MarginFunction, duration_s) -> np.ndarray:
         none = first < 0
         if np.any(none):
             d = dur[idx][none]
-            m_min, t_min = least_margin(_Subset(fn, idx[none]), d, return_time=True)
+            m_min, t_min = least_margin(Subset(fn, idx[none]), d, return_time=True)
             dip = m_min < 1.0
             r = rows[none][dip]
             step = d[dip] / (t.shape[1] - 1)
@@ -131,7 +135,7 @@ def _root_in(fn, index, t_lo, t_hi):
     return np.where(np.isfinite(res.x), res.x, t_hi)
 
 
-class _Subset:
+class Subset:
     """The same margin function restricted to some points (indices renumbered from 0)."""
 
     def __init__(self, fn: MarginFunction, index):
@@ -154,17 +158,17 @@ def least_hand_force(fn: MarginFunction, duration_s) -> np.ndarray:
     todo = np.flatnonzero(~flat)
     if todo.size == 0:
         return out
-    sub = _Subset(fn, todo)
+    sub = Subset(fn, todo)
     m_zero = least_margin(sub, dur[todo], force_N=0.0)
     out[todo[m_zero >= 1.0]] = 0.0
     todo = todo[m_zero < 1.0]
     hi = np.full(todo.size, FORCE_START_N)
     while todo.size:
-        m_hi = least_margin(_Subset(fn, todo), dur[todo], force_N=hi)
+        m_hi = least_margin(Subset(fn, todo), dur[todo], force_N=hi)
         ok = m_hi >= 1.0
         if np.any(ok):
             r = np.flatnonzero(ok)
-            sub = _Subset(fn, todo[r])
+            sub = Subset(fn, todo[r])
             res = elementwise.find_root(lambda f, j, d: least_margin_at(sub, j, d, f) - 1.0,
                                         (hi[r] / 2.0 * (hi[r] > FORCE_START_N), hi[r]),
                                         args=(np.arange(r.size), dur[todo[r]]), tolerances=dict(xrtol=1e-10, xatol=1e-7))
@@ -180,5 +184,5 @@ def least_margin_at(fn, index, duration_s, force_N):
     index, duration_s, force_N = np.broadcast_arrays(np.asarray(index, int), np.asarray(duration_s, float),
                                                      np.asarray(force_N, float))
     shape = index.shape
-    sub = _Subset(fn, index.ravel())
+    sub = Subset(fn, index.ravel())
     return least_margin(sub, duration_s.ravel(), force_N=force_N.ravel()).reshape(shape)

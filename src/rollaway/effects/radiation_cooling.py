@@ -18,16 +18,21 @@ def radiative_convective_temperature_C(time_s, initial_temp_C, ambient_C, heat_t
     ambient on a log grid (smooth integrand, no stiffness) and inverted by interpolation,
     so all samples of all tests are done at once.
     """
-    t = np.asarray(time_s, float)
-    t0 = np.asarray(initial_temp_C, float) * np.ones_like(t)
-    amb = np.asarray(ambient_C, float) * np.ones_like(t)
-    out = np.empty_like(t)
-    for ta in np.unique(amb):
-        sel = amb == ta
+    t, t0, amb, h, eps = np.broadcast_arrays(*(np.asarray(x, float) for x in (
+        time_s, initial_temp_C, ambient_C, heat_transfer_W_m2K, emissivity)))
+    shape = t.shape
+    t, t0 = t.ravel(), t0.ravel()
+    out = np.empty(t.size)
+    keys = np.stack([amb.ravel(), h.ravel(), eps.ravel()], axis=1)
+    uniq, inverse = np.unique(keys, axis=0, return_inverse=True)
+    order = np.argsort(inverse.ravel(), kind="stable")
+    bounds = np.concatenate([[0], np.cumsum(np.bincount(inverse.ravel(), minlength=len(uniq)))])
+    for j, (ta, hj, ej) in enumerate(uniq):      # one table of G per (ambient, h, ε)
+        sel = order[bounds[j]:bounds[j + 1]]
         top = max(float(np.max(t0[sel] - ta)), 1e-3) * 1.01
         s = np.linspace(np.log(1e-4), np.log(top), n_grid)
         d = np.exp(s)
-        q = heat_transfer_W_m2K * cooled_area_m2 * d + emissivity * STEFAN_BOLTZMANN_W_m2K4 * cooled_area_m2 * (
+        q = hj * cooled_area_m2 * d + ej * STEFAN_BOLTZMANN_W_m2K4 * cooled_area_m2 * (
             (ta + d + KELVIN) ** 4 - (ta + KELVIN) ** 4)
         f = heat_capacity_J_K * d / q
         g = np.concatenate([[0.0], np.cumsum(0.5 * (f[1:] + f[:-1]) * np.diff(s))])   # increasing in s
@@ -38,7 +43,7 @@ def radiative_convective_temperature_C(time_s, initial_temp_C, ambient_C, heat_t
         inside = g_target >= 0.0
         s_out = np.where(inside, np.interp(np.maximum(g_target, 0.0), g, s), s[0] + g_target / f0)
         out[sel] = ta + np.sign(t0[sel] - ta) * np.exp(s_out)
-    return out
+    return out.reshape(shape)
 
 
 class RadiationCooling(Effect):

@@ -1,0 +1,104 @@
+"""From fitted-parameter uncertainty to roll-away risk.
+
+A calibrated :class:`~rollaway.model.DrumModel` carries the covariance of its fitted values.
+:func:`draw_values` samples N parameter vectors from the multivariate normal it defines,
+truncated to each parameter's physical bounds (rejection, then clipping of what is left);
+:func:`rollaway_risk` evaluates the hold check for every draw at once (the draws are one more
+broadcast axis of the drum chain) and reports the probability that the car rolls away and
+the 5/50/95 percentiles of the least brake margin and of the slip time.
+"""
+from __future__ import annotations
+
+from dataclasses import dataclass
+
+import numpy as np
+
+from rollaway.errors import UserError
+from rollaway.model import BASELINE_FREE, DrumModel
+
+MAX_REJECTION_ROUNDS = 50
+PERCENTILES = (5.0, 50.0, 95.0)
+
+
+def draw_values(model: DrumModel, n: int, seed: int | None = 0) -> dict[str, np.ndarray]:
+    """N draws of the fitted values from the model's covariance, within bounds: {name: (n,) array}."""
+    if model.covariance is None:
+        raise UserError(f"model '{model.name}' has no [covariance]; save a fitted model with 'rollaway fit DATA "
+                        f"--save-model FILE.toml' (or add a [covariance] table) to use --uncertainty")
+    if not (isinstance(n, (int, np.integer)) and 1 <= n <= 1_000_000):
+        raise UserError(f"--uncertainty {n} must be a whole number of draws from 1 to 1000000, e.g. 1000")
+    c = model.covariance
+    fitted = model.fitted_values()
+    mean = np.array([fitted[k] for k in c.names], float)
+    lo = np.array([model.bounds(k)[0] for k in c.names])
+    hi = np.array([model.bounds(k)[1] for k in c.names])
+    rng = np.random.default_rng(seed)
+    out = np.empty((n, len(mean)))
+    todo = np.arange(n)
+    for _ in range(MAX_REJECTION_ROUNDS):
+        x = rng.multivariate_normal(mean, c.matrix, size=todo.size, method="eigh")
+        ok = np.all((x >= lo) & (x <= hi), axis=1)
+        out[todo[ok]] = x[ok]
+        todo = todo[~ok]
+        if todo.size == 0:
+            break
+    if todo.size:                      # the mean sits at a bound: clip the rest
+        out[todo] = np.clip(rng.multivariate_normal(mean, c.matrix, size=todo.size, method="eigh"), lo, hi)
+    return {k: out[:, i] for i, k in enumerate(c.names)}
+
+
+@dataclass(frozen=True)
+class Risk:
+    """Roll-away risk of one case under parameter uncertainty."""
+
+    draws: int
+    rollaway_probability: float
+    least_margin_percentiles: dict[str, float]     # "p5", "p50", "p95" of min(brake least margin, tyre margin)
+    slip_time_percentiles_s: dict[str, float | None]   # None: beyond the duration (holds)
+    tyre_margin: float
+    values: dict[str, np.ndarray]                  # the draws
+    least_margin: np.ndarray                       # per draw
+    slip_time_s: np.ndarray                        # per draw (NaN: holds)
+
+    def as_dict(self) -> dict:
+        return {"draws": self.draws, "rollaway_probability": self.rollaway_probability,
+                "least_margin_percentiles": self.least_margin_percentiles,
+                "slip_time_percentiles_s": self.slip_time_percentiles_s, "tyre_margin": self.tyre_margin}
+
+    def draw_at_percentile(self, q: float) -> dict[str, float]:
+        """The drawn values whose least margin is closest to its *q*-th percentile."""
+        if not 0.0 <= q <= 100.0:
+            raise UserError(f"percentile {q:g} must be within 0–100, e.g. 5 for a pessimistic draw")
+        target = np.percentile(self.least_margin, q)
+        i = int(np.argmin(np.abs(self.least_margin - target)))
+        return {k: float(v[i]) for k, v in self.values.items()}
+
+
+def rollaway_risk(model: DrumModel, *, hand_force_N: float, grade_pct: float, direction: str, occupants: int,
+                  duration_s: float, initial_temp_C: float | None = None, draws: int = 1000,
+                  seed: int | None = 0) -> Risk:
+    """Probability of a roll-away over [0, duration_s] and percentiles, from *draws* parameter draws."""
+    from rollaway.hold import _effective, required_torque, tyre_adhesion_margin, validate_hand_force
+    from rollaway.hold_numeric import MarginFunction, Subset, first_slip_time, least_margin
+
+    vals = draw_values(model, draws, seed)
+    g, sign = _effective(grade_pct, direction)
+    t_req = float(required_torque(model.params, g, occupants))
+    mu = vals.get("mu_drum", np.full(draws, model.params.mu_drum))
+    fn = MarginFunction(model, np.full(draws, float(validate_hand_force(hand_force_N))), np.full(draws, float(sign)),
+                        np.full(draws, t_req), mu, None, initial_temp_C, heat_transfer_W_m2K=vals.get(
+                            "heat_transfer_W_m2K"), values={k: v for k, v in vals.items() if k not in BASELINE_FREE})
+    brake = least_margin(fn, duration_s)
+    t_slip = np.full(draws, np.nan)
+    slips = np.flatnonzero(brake < 1.0)          # only draws whose brake gives way have a slip time
+    if slips.size:
+        t_slip[slips] = first_slip_time(Subset(fn, slips), duration_s)
+    tyre = float(tyre_adhesion_margin(model.params, grade_pct, direction, occupants))
+    least = np.minimum(brake, tyre)
+    t_roll = np.where(tyre < 1.0, 0.0, t_slip)
+    pct = {f"p{q:g}": float(np.percentile(least, q, method="inverted_cdf")) for q in PERCENTILES}
+    t_inf = np.where(np.isnan(t_roll), np.inf, t_roll)       # a draw that holds slips "after the duration"
+    tp = {f"p{q:g}": (lambda x: None if not np.isfinite(x) else float(x))(np.percentile(t_inf, q,
+                                                                                      method="inverted_cdf"))
+          for q in PERCENTILES}
+    return Risk(draws, float(np.mean(least < 1.0)), pct, tp, tyre, vals, least, t_roll)
