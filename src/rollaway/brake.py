@@ -9,7 +9,7 @@ from __future__ import annotations
 import numpy as np
 from numpy.typing import ArrayLike
 
-from rollaway.model import BrakeSeries, DrumModel
+from rollaway.model import BrakeSeries, DrumModel, as_model
 from rollaway.parameters import BrakeParameters, paper
 from rollaway.physics import drum
 
@@ -17,7 +17,7 @@ from rollaway.physics import drum
 def drum_temperature(params: BrakeParameters, time_s: ArrayLike, initial_temp_C: ArrayLike | None = None,
                      heat_transfer_W_m2K: ArrayLike | None = None) -> np.ndarray:
     """Drum temperature over time, eq. (10), for a parameter set [°C]."""
-    return DrumModel(params).drum_temperature(time_s, initial_temp_C=initial_temp_C,
+    return as_model(params).drum_temperature(time_s, initial_temp_C=initial_temp_C,
                                               heat_transfer_W_m2K=heat_transfer_W_m2K)
 
 
@@ -38,5 +38,5 @@ def drum_brake(params: BrakeParameters | None = None, *, time_s: ArrayLike, hand
                direction="downhill", mu_drum: ArrayLike | None = None, gap_m: ArrayLike | None = None,
                initial_temp_C: ArrayLike | None = None) -> BrakeSeries:
     """The paper's model (docs/model.md, the chain) for one drum; any argument may be an array."""
-    return DrumModel(paper() if params is None else params).evaluate(
+    return as_model(paper() if params is None else params).evaluate(
         time_s, hand_force_N, direction, mu_drum=mu_drum, gap_m=gap_m, initial_temp_C=initial_temp_C)

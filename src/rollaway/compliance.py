@@ -22,6 +22,7 @@ from rollaway.regulations import PRESETS, get_preset
 from rollaway.scenario import Scenario, load_scenario, preset_scenarios
 from rollaway.sweep.analytic import analytic_pass
 from rollaway.sweep.executors import make_task, run_task, scenario_to_dict
+from rollaway.model import as_model
 from rollaway.sweep.spec import DEFAULT_BAND, expand
 
 DEFAULT_TARGETS = ("fmvss135", "unr13h")
@@ -45,8 +46,10 @@ def gate_scenarios(targets, params: BrakeParameters | None = None) -> list[tuple
         check_choice(t, PRESETS, "regulation preset or scenario file (.toml)")
         pr = get_preset(t)
         for s in preset_scenarios(t):
-            if params is not None:
-                s = dataclasses.replace(s, params=params.replace(initial_drum_temp_C=pr.initial_temp_C))
+            if params is not None:    # a parameter set or a drum model (its effects apply to the presets)
+                model = as_model(params)
+                p = model.params.replace(initial_drum_temp_C=pr.initial_temp_C)
+                s = dataclasses.replace(s, params=p, model=model.with_params(p))
             out.append((t, s))
     return out
 

@@ -262,6 +262,17 @@ def minimum_hand_force_N(params: BrakeParameters, grade_pct: ArrayLike, directio
     return np.maximum(force, 0.0)
 
 
+def self_locking(params: Model, grade_pct: ArrayLike, direction="downhill", mu_drum=None) -> np.ndarray:
+    """True where the shoe self-locks (l_f − s·μ_d·l_fr ≤ 0, eqs. 18–21): the 1D model has no finite torque."""
+    p = _params(params)
+    _, sign = _effective(grade_pct, direction)
+    mu = p.mu_drum if mu_drum is None else np.asarray(mu_drum, float)
+    return np.isinf(shoe_factor(p, _direction_of(sign), mu))
+
+
+OUTCOMES = ("held", "brake_slip", "tyre_skid", "self_locking")
+
+
 @dataclass(frozen=True)
 class HoldVerdict:
     """Outcome of the analytic check for one case."""
@@ -271,20 +282,46 @@ class HoldVerdict:
     time_to_slip_s: float     # NaN if the brake holds for the whole duration
     holds: bool
     reason: str
+    outcome: str = "held"                      # one of OUTCOMES
+    least_hand_force_N: float | None = None    # None where no hand force can hold (tyres, self-locking, μ_d = 0)
+
+    def as_dict(self) -> dict:
+        slip = None if not np.isfinite(self.time_to_slip_s) else float(self.time_to_slip_s)
+        return {"verdict": self.outcome, "holds": self.holds, "reason": self.reason,
+                "brake_margin_min": _finite_or_none(self.brake_margin_min), "slip_time_s": slip,
+                "tyre_margin": _finite_or_none(self.tyre_margin), "least_hand_force_N": self.least_hand_force_N}
 
 
-def analytic_verdict(params: BrakeParameters, *, hand_force_N: float, grade_pct: float, direction: str,
+def _finite_or_none(x: float):
+    return float(x) if np.isfinite(x) else None
+
+
+def analytic_verdict(params: Model, *, hand_force_N: float, grade_pct: float, direction: str,
                      occupants: int, duration_s: float, initial_temp_C: float | None = None,
                      mu_drum: float | None = None) -> HoldVerdict:
-    """Check one case over [0, duration_s]: least brake margin, slip time (solved) and tyre margin."""
+    """Check one case over [0, duration_s]: least brake margin, slip time, tyre margin, least hand force.
+
+    A self-locking shoe (eqs. 18–21) is outside the 1D model: outcome ``self_locking``, not a hold.
+    """
+    tyre = float(tyre_adhesion_margin(params, grade_pct, direction, occupants))
+    if bool(self_locking(params, grade_pct, direction, mu_drum)):
+        mu = _params(params).mu_drum if mu_drum is None else mu_drum
+        return HoldVerdict(np.inf, tyre, np.nan, False,
+                           f"the shoe self-locks (μ_d = {mu:g} ≥ l_f/l_fr, eqs. 18–21): outside the 1D model, "
+                           f"no finite torque to check", "self_locking", None)
     t_slip = float(time_to_slip_s(params, hand_force_N, grade_pct, direction, occupants, mu_drum, None,
                                   initial_temp_C, horizon_s=duration_s))
-    tyre = float(tyre_adhesion_margin(params, grade_pct, direction, occupants))
     brake_min = float(min_brake_margin(params, hand_force_N, grade_pct, direction, occupants, duration_s,
                                        mu_drum, None, initial_temp_C))
+    fmin = float(minimum_hand_force_N(params, grade_pct, direction, occupants, duration_s, mu_drum, None,
+                                      initial_temp_C))
+    least_force = fmin if (np.isfinite(fmin) and tyre >= 1.0) else None
     reasons = []
     if brake_min < 1.0:
         reasons.append(f"brake slips at t = {t_slip:.0f} s" if np.isfinite(t_slip) else "brake slips")
     if tyre < 1.0:
         reasons.append("rear tyres skid (adhesion)")
-    return HoldVerdict(brake_min, tyre, t_slip, not reasons, "; ".join(reasons) or "holds")
+    m_start = float(hold_margin(params, 0.0, hand_force_N, grade_pct, direction, occupants, mu_drum, None,
+                                initial_temp_C))
+    outcome = "held" if not reasons else ("tyre_skid" if tyre < 1.0 and tyre <= m_start else "brake_slip")
+    return HoldVerdict(brake_min, tyre, t_slip, not reasons, "; ".join(reasons) or "holds", outcome, least_force)

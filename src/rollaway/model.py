@@ -24,7 +24,7 @@ pass arrays of time, hand force, direction, μ_d, T_0 — or of effect values �
 """
 from __future__ import annotations
 
-from dataclasses import dataclass
+from dataclasses import dataclass, fields
 
 import numpy as np
 from numpy.typing import ArrayLike
@@ -33,6 +33,8 @@ from rollaway.effects.base import Effect, ModelState
 from rollaway.errors import UserError
 from rollaway.parameters import BrakeParameters, load_parameters
 from rollaway.physics import cooling, drum
+
+_PARAMETER_NAMES = frozenset(f.name for f in fields(BrakeParameters)) | {"cooling_time_constant_s"}
 
 # Free baseline parameters of a calibration and their bounds (μ_d: eqs. 17b–21; h: eq. 10) [assumed ranges]
 BASELINE_FREE = ("mu_drum", "heat_transfer_W_m2K")
@@ -116,6 +118,12 @@ class DrumModel:
         self.effect_files = dict(effect_files or {})   # effect name -> plugin file it came from
 
     # -- bookkeeping -------------------------------------------------------------------
+    def __getattr__(self, name: str):
+        """Parameter values read through the model (``model.mu_drum`` is its set's μ_d)."""
+        if name in _PARAMETER_NAMES:
+            return getattr(self.params, name)
+        raise AttributeError(f"'DrumModel' object has no attribute '{name}'")
+
     def __repr__(self) -> str:
         active = [e.name for e, _ in self.active()]
         return f"DrumModel({self.params.name!r}, effects={active})"

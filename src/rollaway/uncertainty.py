@@ -54,6 +54,7 @@ class Risk:
     draws: int
     rollaway_probability: float
     least_margin_percentiles: dict[str, float]     # "p5", "p50", "p95" of min(brake least margin, tyre margin)
+    brake_margin_percentiles: dict[str, float]     # of the brake's least margin alone
     slip_time_percentiles_s: dict[str, float | None]   # None: beyond the duration (holds)
     tyre_margin: float
     values: dict[str, np.ndarray]                  # the draws
@@ -63,6 +64,7 @@ class Risk:
     def as_dict(self) -> dict:
         return {"draws": self.draws, "rollaway_probability": self.rollaway_probability,
                 "least_margin_percentiles": self.least_margin_percentiles,
+                "brake_margin_percentiles": self.brake_margin_percentiles,
                 "slip_time_percentiles_s": self.slip_time_percentiles_s, "tyre_margin": self.tyre_margin}
 
     def draw_at_percentile(self, q: float) -> dict[str, float]:
@@ -97,8 +99,9 @@ def rollaway_risk(model: DrumModel, *, hand_force_N: float, grade_pct: float, di
     least = np.minimum(brake, tyre)
     t_roll = np.where(tyre < 1.0, 0.0, t_slip)
     pct = {f"p{q:g}": float(np.percentile(least, q, method="inverted_cdf")) for q in PERCENTILES}
+    pct_b = {f"p{q:g}": float(np.percentile(brake, q, method="inverted_cdf")) for q in PERCENTILES}
     t_inf = np.where(np.isnan(t_roll), np.inf, t_roll)       # a draw that holds slips "after the duration"
     tp = {f"p{q:g}": (lambda x: None if not np.isfinite(x) else float(x))(np.percentile(t_inf, q,
                                                                                       method="inverted_cdf"))
           for q in PERCENTILES}
-    return Risk(draws, float(np.mean(least < 1.0)), pct, tp, tyre, vals, least, t_roll)
+    return Risk(draws, float(np.mean(least < 1.0)), pct, pct_b, tp, tyre, vals, least, t_roll)

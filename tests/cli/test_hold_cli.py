@@ -11,8 +11,23 @@ def test_hold_rolls_away_when_drum_cools(run_cli):
 def test_hold_json_margin_series(run_cli):
     code, out, _ = run_cli("hold", "--grade-pct", 20, "--hand-force-N", 400, "--direction", "uphill",
                            "--occupants", 5, "--format", "json")
-    rows = json.loads(out)
-    assert code == 0 and len(rows) == 7 and min(r["hold_margin"] for r in rows) > 1
+    doc = json.loads(out)
+    assert code == 0 and doc["verdict"] == "held" and doc["slip_time_s"] is None
+    assert len(doc["series"]["time_s"]) == 7 and min(doc["series"]["hold_margin"]) > 1
+    assert abs(doc["brake_margin_min"] - min(doc["series"]["hold_margin"])) < 1e-9
+
+
+def test_hold_json_carries_the_decision_when_the_tyres_slide(run_cli):
+    code, out, _ = run_cli("hold", "--grade-pct", 30, "--hand-force-N", 445, "--direction", "downhill",
+                           "--occupants", 1, "--format", "json")
+    doc = json.loads(out)
+    assert code == 1 and doc["verdict"] == "tyre_skid" and doc["least_hand_force_N"] is None
+    assert doc["tyre_margin"] < 1 < doc["brake_margin_min"]
+
+
+def test_hold_self_locking_is_not_a_hold(run_cli):
+    code, _, err = run_cli("hold", "--grade-pct", 20, "--hand-force-N", 300, "--mu", 1.2)
+    assert code == 2 and "self-locks" in err and len(err.strip().splitlines()) == 1
 
 
 @pytest.mark.parametrize("args, needle", [

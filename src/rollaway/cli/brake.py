@@ -6,23 +6,29 @@ from typing import Optional
 import numpy as np
 import typer
 
-from rollaway.brake import drum_brake
 from rollaway.cli import options as opt
 from rollaway.cli.output import FORMATS, write_table
 from rollaway.errors import UserError, check_choice
 from rollaway.hold import validate_hand_force
-from rollaway.parameters import load_parameters
 from rollaway.physics.drum import DIRECTIONS
 
 
-def time_grid_s(t_end_s: float, dt_s: float) -> np.ndarray:
+def load_cli_model(params, overrides=()):
+    """The --params model (set name, parameter or model file) with CLI overrides ``(key, value, flag)``."""
+    from rollaway.model_file import load_model
+    model = load_model(params)
+    p = model.params.with_overrides(list(overrides))
+    return model if p is model.params else model.with_params(p)
+
+
+def time_grid_s(t_end_s: float, dt_s: float, flag: str = "--t-end-s") -> np.ndarray:
     if not np.isfinite(t_end_s) or t_end_s < 0:
-        raise UserError(f"--t-end-s {t_end_s:g} must be ≥ 0 seconds, e.g. 3600 for one hour")
+        raise UserError(f"{flag} {t_end_s:g} must be ≥ 0 seconds, e.g. 3600 for one hour")
     if not np.isfinite(dt_s) or dt_s <= 0:
         raise UserError(f"--dt-s {dt_s:g} must be > 0 seconds, e.g. 600")
     n = int(np.floor(t_end_s / dt_s + 1e-9))
     if n > 10_000_000:
-        raise UserError(f"--t-end-s/--dt-s gives {n} rows; use a larger --dt-s")
+        raise UserError(f"{flag}/--dt-s gives {n} rows; use a larger --dt-s")
     return np.arange(n + 1) * dt_s
 
 
@@ -37,16 +43,20 @@ def brake(
     params: Optional[str] = opt.PARAMS,
     fmt: str = opt.FORMAT,
 ) -> None:
-    """Print the drum temperature, normal force and torque of ONE drum over time (paper eqs. 10, 16, 17b, 24)."""
+    """Print the drum temperature, normal force and torque of ONE drum over time (paper eqs. 10, 16, 17b, 24).
+
+    --params may be a model file: its effects are included.
+    """
     check_choice(fmt, FORMATS, "format")
     check_choice(direction, DIRECTIONS, "direction")
     validate_hand_force(hand_force_N)
-    p = load_parameters(params).with_overrides([
+    model = load_cli_model(params, [
         ("mu_drum", mu, "--mu"),
         ("gap_m", None if gap_mm is None else gap_mm / 1000.0, "--gap-mm (in m)"),
         ("initial_drum_temp_C", t0_C, "--t0-C")])
+    p = model.params
     t = time_grid_s(t_end_s, dt_s)
-    series = drum_brake(p, time_s=t, hand_force_N=hand_force_N, direction=direction)
+    series = model.evaluate(t, hand_force_N, direction)
     if bool(np.any(series.self_locked)):
         raise UserError(f"the shoe self-locks facing {direction} with μ_d = {p.mu_drum:g} "
                         f"(l_f − μ_d·l_fr ≤ 0, eqs. 18–21): the 1D model has no finite torque; lower --mu")

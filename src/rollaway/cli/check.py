@@ -9,16 +9,18 @@ import typer
 from rollaway.cli.output import FORMATS, write_table
 from rollaway.errors import check_choice
 from rollaway.hold import analytic_verdict, minimum_hand_force_N
-from rollaway.parameters import load_parameters
+from rollaway.model_file import load_model
 from rollaway.regulations import PRESETS, get_preset
 
 DEFAULT_PRESETS = ("fmvss135", "unr13h")
 
 
-def analytic_rows(preset_names, params) -> dict[str, list]:
+def analytic_rows(preset_names, params, uncertainty: int | None = None) -> dict[str, list]:
     cols: dict[str, list] = {k: [] for k in (
         "preset", "direction", "grade_pct", "occupants", "hand_force_N", "duration_s", "min_brake_margin",
         "tyre_margin", "min_hand_force_N", "verdict", "reason")}
+    if uncertainty is not None:
+        cols["rollaway_probability"] = []
     for name in preset_names:
         pr = get_preset(name)
         for d in pr.directions:
@@ -32,6 +34,11 @@ def analytic_rows(preset_names, params) -> dict[str, list]:
                            ("tyre_margin", v.tyre_margin), ("min_hand_force_N", fmin),
                            ("verdict", "PASS" if v.holds else "FAIL"), ("reason", v.reason)):
                 cols[k].append(val)
+            if uncertainty is not None:
+                from rollaway.uncertainty import rollaway_risk
+                cols["rollaway_probability"].append(rollaway_risk(
+                    params, hand_force_N=pr.hand_force_N, grade_pct=pr.grade_pct, direction=d, occupants=pr.occupants,
+                    duration_s=pr.duration_s, initial_temp_C=pr.initial_temp_C, draws=uncertainty).rollaway_probability)
     return cols
 
 
@@ -41,7 +48,11 @@ def check(
         help="regulation presets (fmvss135, unr13h, paper30, or 'all') and, without --analytic, scenario "
              "TOML files; default: fmvss135 unr13h"),
     analytic: bool = typer.Option(False, "--analytic", help="use the paper's analytic check (no simulation)"),
-    params: Optional[str] = typer.Option(None, "--params", help="parameter set name or TOML file (default: paper)"),
+    params: Optional[str] = typer.Option(None, "--params", help="parameter set name, parameter file or model file "
+                                                                "(.toml; default: paper)"),
+    uncertainty: Optional[int] = typer.Option(None, "--uncertainty",
+                                              help="with --analytic: N draws from the model file's covariance; adds "
+                                                   "the roll-away probability of each case"),
     fmt: str = typer.Option("table", "--format", help="csv | json | table"),
 ) -> int:
     """Regulation hold checks (the CI gate); exit 0 when every case holds, 1 when any fails.
@@ -52,7 +63,7 @@ def check(
     file names its own parameter set.
     """
     check_choice(fmt, FORMATS, "format")
-    p = load_parameters(params)
+    p = load_model(params)
     names = list(targets or DEFAULT_PRESETS)
     if names == ["all"]:
         names = list(PRESETS)
@@ -61,7 +72,7 @@ def check(
         return simulated_check(names, p if params else None, fmt)
     for n in names:
         get_preset(n)
-    cols = analytic_rows(names, p)
+    cols = analytic_rows(names, p, uncertainty)
     write_table(cols, fmt, precision=4)
     if fmt == "table":
         for n in names:

@@ -6,17 +6,17 @@ from typing import Optional
 
 import typer
 
-from rollaway.parameters import load_parameters
+from rollaway.model_file import load_model
 
 
 def paper(
     out: Path = typer.Option(Path("renders/paper"), "--out", help="folder for the PNGs"),
-    params: Optional[str] = typer.Option(None, "--params", help="parameter set name or TOML file (default: paper)"),
+    params: Optional[str] = typer.Option(None, "--params", help="parameter set name, parameter file or model file (.toml; default: paper)"),
 ) -> None:
     """Draw the analogues of the paper's Figures 9–14 as PNGs: cooling, torque vs time, FMVSS check, μ_d, occupants."""
     from rollaway.errors import UserError
     from rollaway.figures.paper import paper_figures
-    p = load_parameters(params)
+    p = load_model(params)
     if out.exists() and not out.is_dir():
         raise UserError(f"--out '{out}' is a file; give a folder for the PNGs")
     for path in paper_figures(p, out):

@@ -6,7 +6,8 @@ from typing import Optional
 import typer
 
 from rollaway.cli.output import write_table
-from rollaway.parameters import SPEC_BY_NAME, load_parameters
+from rollaway.model_file import load_model
+from rollaway.parameters import SPEC_BY_NAME
 
 
 def params(
@@ -14,16 +15,23 @@ def params(
     fmt: str = typer.Option("table", "--format", help="csv | json | table"),
 ) -> None:
     """List every parameter of a set: value, unit, source; 'assumed' marks values not in the paper's Table 1."""
-    p = load_parameters(source)
-    d = p.as_dict()
-    write_table({
+    model = load_model(source)
+    d = model.params.as_dict()
+    cols = {
         "name": list(d),
         "symbol": [SPEC_BY_NAME[k].symbol for k in d],
         "value": [float(v) for v in d.values()],
         "unit": [SPEC_BY_NAME[k].unit for k in d],
         "assumed": ["yes" if SPEC_BY_NAME[k].assumed else "" for k in d],
         "source": [SPEC_BY_NAME[k].source for k in d],
-    }, fmt)
+    }
+    for e in model.effects:          # a model file's effects: their values, after the set's
+        for par in e.parameters:
+            key = f"{e.name}.{par.name}"
+            for col, val in (("name", key), ("symbol", ""), ("value", float(model.values[key])), ("unit", par.unit),
+                             ("assumed", ""), ("source", f"effect '{e.name}' ({model.name})")):
+                cols[col].append(val)
+    write_table(cols, fmt)
 
 
 def register(app: typer.Typer) -> None:

@@ -19,7 +19,7 @@ import numpy as np
 import pandas as pd
 
 from rollaway.errors import UserError
-from rollaway.hold import (hold_margin, invalid_grade, invalid_hand_force, invalid_occupants, min_brake_margin,
+from rollaway.hold import (self_locking, hold_margin, invalid_grade, invalid_hand_force, invalid_occupants, min_brake_margin,
                            minimum_hand_force_N, time_to_slip_s, tyre_adhesion_margin, validate_occupants)
 from rollaway.parameters import SPEC_BY_NAME
 from rollaway.physics.drum import DIRECTIONS
@@ -84,7 +84,7 @@ def analytic_pass(base: Scenario, points: pd.DataFrame, band) -> pd.DataFrame:
     out = points.copy()
     ok = valid_mask(points)
     v = points[ok]
-    p = base.params
+    p = base.model       # the drum model: closed forms without effects, numeric with them
     g, d = v["grade_pct"].to_numpy(float), v["direction"].to_numpy(str)
     n, f = v["occupants"].to_numpy(float), v["hand_force_N"].to_numpy(float)
     mu, t0 = v["mu_drum"].to_numpy(float), v["initial_drum_temp_C"].to_numpy(float)
@@ -98,6 +98,9 @@ def analytic_pass(base: Scenario, points: pd.DataFrame, band) -> pd.DataFrame:
 
     tyre_first = (tyre < 1.0) & (tyre <= m_start)
     outcome = np.where(np.minimum(brake, tyre) >= 1.0, "held", np.where(tyre_first, "tyre_skid", "brake_slip"))
+    locked = self_locking(p, g, d, mu)             # eqs. 18–21: outside the 1D model, never "held"
+    outcome = np.where(locked, "self_locking", outcome)
+    f_min = np.where(locked | (tyre < 1.0), np.nan, f_min)   # no hand force holds where the tyres slide
     t_roll = np.where(outcome == "held", np.nan, np.where(outcome == "tyre_skid", 0.0, t_slip))
 
     def put(name, values, fill, dtype=None):
@@ -110,10 +113,10 @@ def analytic_pass(base: Scenario, points: pd.DataFrame, band) -> pd.DataFrame:
     put("margin", np.minimum(brake, tyre), np.nan, float)
     put("analytic_time_to_slip_s", t_slip, np.nan, float)
     put("min_hand_force_N", f_min, np.nan, float)
-    put("paper_verdict", np.where(brake >= 1.0, "hold", "roll"), "", object)
+    put("paper_verdict", np.where(locked, "self_locking", np.where(brake >= 1.0, "hold", "roll")), "", object)
     put("analytic_outcome", outcome, "", object)
     put("analytic_rollaway_time_s", t_roll, np.nan, float)
-    put("in_band", in_band(brake, tyre, band), False, bool)
+    put("in_band", in_band(brake, tyre, band) & ~locked, False, bool)
     errors = np.full(len(points), "", dtype=object)
     for i in np.flatnonzero(~ok):
         errors[i] = invalid_message(base, points.iloc[i])

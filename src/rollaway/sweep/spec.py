@@ -205,6 +205,8 @@ def expand(base: Scenario, grid: dict[str, list] | None = None, points: list[dic
 def base_key(base: Scenario) -> str:
     """Hash of what a point inherits from its base: every parameter of the set."""
     payload = json.dumps(base.params.as_dict(), sort_keys=True)
+    if base.model.has_effects:            # a model with effects is another base: other point ids
+        payload += json.dumps({k: float(v) for k, v in base.model.values.items()}, sort_keys=True)
     return hashlib.sha1(payload.encode()).hexdigest()
 
 
