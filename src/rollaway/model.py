@@ -31,7 +31,7 @@ from numpy.typing import ArrayLike
 
 from rollaway.effects.base import Effect, ModelState
 from rollaway.errors import UserError
-from rollaway.parameters import BrakeParameters, load_parameters
+from rollaway.parameters import BrakeParameters
 from rollaway.physics import cooling, drum
 
 _PARAMETER_NAMES = frozenset(f.name for f in fields(BrakeParameters)) | {"cooling_time_constant_s"}
@@ -98,7 +98,10 @@ class DrumModel:
                  base: str | None = None, effect_files: dict | None = None):
         from rollaway.effects import get_effect
 
-        self.params = params if isinstance(params, BrakeParameters) else load_parameters(params)
+        if not isinstance(params, BrakeParameters):     # a set name, parameter file or model file: its set
+            from rollaway.model_file import load_model
+            params = load_model(params).params
+        self.params = params
         self.effects: tuple[Effect, ...] = tuple(get_effect(e) for e in effects)
         names = [e.name for e in self.effects]
         dup = sorted({n for n in names if names.count(n) > 1})

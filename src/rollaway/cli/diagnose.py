@@ -14,15 +14,22 @@ def diagnose(
     effect_file: List[str] = typer.Option([], "--effect-file", help="Python file with extra candidate effects"),
     json_out: Optional[str] = typer.Option(None, "--json", help="write the diagnosis as JSON here"),
     report: Optional[str] = typer.Option(None, "--report", help="write a self-contained HTML report here"),
+    save_model: Optional[str] = typer.Option(None, "--save-model", metavar="FILE.toml",
+                                             help="write the calibrated model (effects, fitted values, covariance, "
+                                                  "provenance) for --params of every command"),
 ) -> None:
     """Calibrate μ_d and h, fit every catalogue effect jointly, rank by BIC and leave-one-test-out
     cross-validation, and say which effect is missing (or 'none') with the evidence."""
     from rollaway.identify.diagnose import diagnose as run
 
-    prepare_outputs(report=report, json_out=json_out)
+    prepare_outputs(report=report, json_out=json_out, save_model=save_model)
     load_plugins(effect_file)
     diag = run(load_data(data), params)
     write_outputs(diag, report=report, json_out=json_out)
+    if save_model:
+        from rollaway.identify.export import save_fit
+        typer.echo(f"model: {save_fit(diag.refined, save_model, data, 'diagnose')} (paper chain + the verdict's "
+                   f"effects; use it with --params)")
 
 
 def register(app: typer.Typer) -> None:

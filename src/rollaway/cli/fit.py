@@ -17,18 +17,24 @@ def fit(
     plot: Optional[str] = typer.Option(None, "--plot", help="draw the ladder and before/after curves to this PNG"),
     report: Optional[str] = typer.Option(None, "--report", help="write a self-contained HTML report here"),
     json_out: Optional[str] = typer.Option(None, "--json", help="write the ladder and parameters as JSON here"),
+    save_model: Optional[str] = typer.Option(None, "--save-model", metavar="FILE.toml",
+                                             help="write the calibrated model (effects, fitted values, covariance, "
+                                                  "provenance) for --params of every command"),
 ) -> None:
     """Error ladder: paper defaults → calibrated baseline → + each effect (each rung calibrated), with the
     fitted parameters, 95 % intervals and bound warnings."""
     from rollaway.identify.ladder import fit as run
 
-    prepare_outputs(report=report, json_out=json_out, plot=plot)
+    prepare_outputs(report=report, json_out=json_out, plot=plot, save_model=save_model)
     load_plugins(effect_file)
     effects = parse_effects(effect)
     d = load_data(data)
     start = {f"{n}.{k}": v for n, vals in effects.items() for k, v in vals.items()}
     ladder = run(d, list(effects), params, start=start)
     write_outputs(ladder, report=report, json_out=json_out, plot=plot)
+    if save_model:
+        from rollaway.identify.export import save_fit
+        typer.echo(f"model: {save_fit(ladder.final, save_model, data, 'fit')} (use it with --params)")
 
 def register(app: typer.Typer) -> None:
     app.command("fit")(fit)

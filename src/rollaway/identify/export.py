@@ -1,0 +1,45 @@
+"""A fit as a drum-model file: the calibrated :class:`~rollaway.model.DrumModel` with covariance and provenance.
+
+What ``fit --save-model`` and ``diagnose --save-model`` write, and what ``--params`` of every
+other command reads back (:mod:`rollaway.model_file`).
+"""
+from __future__ import annotations
+
+from pathlib import Path
+
+import numpy as np
+
+from rollaway.model import Covariance, DrumModel
+
+
+def fit_covariance(fit) -> Covariance | None:
+    """The covariance of the fitted parameters (the fit's own matrix, else its standard errors on a diagonal)."""
+    cov = getattr(fit, "covariance", None)
+    if isinstance(cov, Covariance):
+        return cov
+    if isinstance(cov, tuple) and len(cov) == 2:
+        return Covariance(tuple(cov[0]), np.asarray(cov[1], float))
+    names = [n for n, e in fit.estimates.items() if np.isfinite(e.stderr)]
+    if not names:
+        return None
+    return Covariance(tuple(names), np.diag([fit.estimates[n].stderr ** 2 for n in names]))
+
+
+def calibrated_model(fit, data_path: str | Path | None = None, command: str = "fit") -> DrumModel:
+    """The drum model a fit found: its parameter set with μ_d and h, its effects and values, covariance."""
+    from rollaway.model_file import provenance_for
+
+    model = fit.model.drum_model(fit.values, covariance=fit_covariance(fit))
+    if data_path is not None:
+        model.provenance = provenance_for(data_path, rows=len(fit.data), tests=fit.data.n_tests, command=command,
+                                          rmse={"rmse_torque_Nm": fit.rmse_torque_Nm, "rmse_temp_C": fit.rmse_temp_C})
+    return model
+
+
+def save_fit(fit, path: str | Path, data_path: str | Path, command: str) -> Path:
+    """Write the calibrated model of *fit* as a model file."""
+    from rollaway.model_file import save_model
+
+    model = calibrated_model(fit, data_path, command)
+    effects = ", ".join(e.name for e in model.effects) or "no effect (paper chain, calibrated)"
+    return save_model(model, path, comment=f"Calibrated by 'rollaway {command}' on {Path(data_path).name}: {effects}.")
