@@ -103,8 +103,13 @@ def _validate(s: Scenario, where: str) -> None:
         raise UserError(f"{where}: key 'duration_s' = {s.duration_s:g} must be in (0, {MAX_DURATION_S:.0f}] seconds")
 
 
-def scenario_from_mapping(data: dict, where: str = "scenario", base_dir: Path | None = None) -> Scenario:
-    """Validate a parsed TOML mapping into a :class:`Scenario`."""
+def scenario_from_mapping(data: dict, where: str = "scenario", base_dir: Path | None = None,
+                          params: str | None = None) -> Scenario:
+    """Validate a parsed TOML mapping into a :class:`Scenario`.
+
+    *params* (a set name, parameter or model file; CLI ``--params``) replaces the file's ``params``
+    key; the file's own overrides (``mu_drum``, ``[parameters]``, …) still apply on top.
+    """
     for key in data:
         if key not in _KEYS:
             raise UserError(f"{where}: unknown key '{key}'{suggest(key, _KEYS)}; valid keys: {', '.join(_KEYS)}")
@@ -119,15 +124,15 @@ def scenario_from_mapping(data: dict, where: str = "scenario", base_dir: Path | 
         if not ok:
             kind = {float: "a number", int: "a whole number", str: "a quoted string", dict: "a [table]"}[typ]
             raise UserError(f"{where}: key '{key}' must be {kind}, got {v!r}")
-    src = data.get("params")
-    if src is not None and base_dir is not None and src.endswith(".toml"):
+    src = data.get("params") if params is None else params
+    if params is None and src is not None and base_dir is not None and src.endswith(".toml"):
         src = str((base_dir / src))
     from rollaway.model_file import load_model
     try:
         model = load_model(src)
     except UserError as exc:
         if src is None or str(exc).startswith(str(src)):
-            raise UserError(f"{where}: key 'params' = {data['params']!r}: {exc}") from None
+            raise UserError(f"{where}: key 'params' = {src!r}: {exc}") from None
         raise
     params = model.params
     overrides = dict(data.get("parameters", {}))
@@ -148,11 +153,11 @@ def scenario_from_mapping(data: dict, where: str = "scenario", base_dir: Path | 
     return s
 
 
-def load_scenario(path: str | Path) -> Scenario:
-    """Read and validate a scenario TOML file."""
+def load_scenario(path: str | Path, params: str | None = None) -> Scenario:
+    """Read and validate a scenario TOML file (*params*: another drum model, see :func:`scenario_from_mapping`)."""
     path = Path(path)
     data = read_toml(path, "scenario file", "see scenarios/*.toml for examples")
-    return scenario_from_mapping(data, where=str(path), base_dir=path.parent)
+    return scenario_from_mapping(data, where=str(path), base_dir=path.parent, params=params)
 
 
 def preset_scenarios(preset_name: str) -> list[Scenario]:

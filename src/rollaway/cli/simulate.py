@@ -36,8 +36,18 @@ def simulate(
     render: Optional[str] = typer.Option(None, "--render", help="write a video/picture: FILE.mp4, FILE.gif or FILE.png"),
     json_file: Optional[str] = typer.Option(None, "--json", help="also write the result as JSON to this file"),
     mode: str = typer.Option("fast", "--mode", help="fast (event-driven skip while at rest) | fixed (plain 1 ms stepping)"),
+    params: Optional[str] = typer.Option(None, "--params", help="drum model for this run: a set name, parameter "
+                                         "file or model file (.toml; replaces the scenario's 'params')"),
+    uncertainty: Optional[int] = typer.Option(None, "--uncertainty", help="draw N parameter vectors from the "
+                                              "model's covariance and simulate the --percentile draw"),
+    percentile: float = typer.Option(5.0, "--percentile", help="with --uncertainty: which draw to simulate, by its "
+                                     "least margin (5 = a pessimistic draw)"),
 ) -> None:
-    """Simulate a parked car held by the drum brake in MuJoCo: held, brake_slip or tyre_skid."""
+    """Simulate a parked car held by the drum brake in MuJoCo: held, brake_slip or tyre_skid.
+
+    The brake torque comes from the scenario's drum model, effects included (--params FILE.toml
+    from 'rollaway fit --save-model').
+    """
     from rollaway.scenario import load_scenario
     from rollaway.sim import simulate as run_sim
     from rollaway.sim.render import check_render_path
@@ -48,7 +58,9 @@ def simulate(
         check_render_path(render)
     if json_file is not None:
         ensure_parent_dir(json_file, "--json")
-    scenario = load_scenario(scenario_file)
+    scenario = load_scenario(scenario_file, params=params)
+    if uncertainty is not None:
+        scenario = _percentile_draw(scenario, uncertainty, percentile)
     result = run_sim(scenario, render=render, mode=mode)
     d = result.to_dict()
     typer.echo(f"{scenario.name}: {scenario.description}" if scenario.description else scenario.name)
@@ -62,6 +74,21 @@ def simulate(
                    "hand_force_N": scenario.hand_force_N, "duration_s": scenario.duration_s}
         Path(json_file).write_text(json.dumps(payload, indent=1) + "\n", encoding="utf-8")
         typer.echo(f"wrote {json_file}")
+
+
+def _percentile_draw(scenario, draws: int, percentile: float):
+    """The scenario with the model at the draw whose least margin is at *percentile* (printed)."""
+    import dataclasses
+
+    from rollaway.uncertainty import rollaway_risk
+    risk = rollaway_risk(scenario.model, hand_force_N=scenario.hand_force_N, grade_pct=scenario.grade_pct,
+                         direction=scenario.direction, occupants=scenario.occupants, duration_s=scenario.duration_s,
+                         draws=draws)
+    draw = risk.draw_at_percentile(percentile)
+    model = scenario.model.with_draw(draw)
+    typer.echo(f"uncertainty: roll-away probability {risk.rollaway_probability:.3f} over {draws} draws; simulating "
+               f"the p{percentile:g} draw: " + ", ".join(f"{k} = {v:.5g}" for k, v in draw.items()))
+    return dataclasses.replace(scenario, params=model.params, model=model)
 
 
 def register(app: typer.Typer) -> None:
