@@ -203,8 +203,8 @@ def time_to_slip_s(params: BrakeParameters, hand_force_N: ArrayLike, grade_pct: 
     if model is not None:
         from rollaway.hold_numeric import first_slip_time
         fn = _margin_function(model, hand_force_N, grade_pct, direction, occupants, mu_drum, gap_m, initial_temp_C)
-        horizon = horizon_s if np.isfinite(horizon_s) else NUMERIC_HORIZON_S
-        return first_slip_time(fn, horizon).reshape(fn.shape)
+        horizon = np.where(np.isfinite(horizon_s), horizon_s, NUMERIC_HORIZON_S)
+        return first_slip_time(fn, np.broadcast_to(horizon, fn.shape).ravel()).reshape(fn.shape)
     params = _params(params)
     g, sign = _effective(grade_pct, direction)
     f = validate_hand_force(hand_force_N)

@@ -40,6 +40,10 @@ def sweep(
     quiet: bool = typer.Option(False, "--quiet", help="no progress bar"),
     no_plots: bool = typer.Option(False, "--no-plots", help="skip the PNG maps and design chart"),
     retry_failed: bool = typer.Option(False, "--retry-failed", help="simulate again the points that failed before"),
+    params: Optional[str] = typer.Option(None, "--params", help="drum model of every point: a set name, parameter "
+                                         "file or model file (.toml); replaces the base's set, keeps its T_0"),
+    uncertainty: Optional[int] = typer.Option(None, "--uncertainty", help="add each point's roll-away probability "
+                                              "from N draws of the model's covariance (slow: one risk per point)"),
 ) -> int:
     """Analytic margin of every point, MuJoCo near the hold/roll boundary; table + maps in the output folder.
 
@@ -55,12 +59,18 @@ def sweep(
         raise UserError("--workers sets local processes; with --dask the cluster's workers run the points — "
                         "give one or the other")
     spec = load_sweep(spec_path)
+    if params is not None:
+        from rollaway.model_file import load_model
+        spec = spec.with_model(load_model(params))
+    if uncertainty is not None and spec.base.model.covariance is None:
+        raise UserError("--uncertainty needs a model file with a [covariance] table; give --params FILE.toml "
+                        "saved by 'rollaway fit --save-model'")
     out_dir = Path(out) if out else Path(f"{spec.name}-results")
     if out_dir.exists() and not out_dir.is_dir():
         raise UserError(f"--out '{out_dir}' is a file; give a folder")
     log = (lambda msg: None) if quiet else (lambda msg: typer.echo(msg, err=True))
     res = run_sweep(spec, out_dir, workers=workers, dask_address=dask, simulate=simulate, progress=not quiet,
-                    plots=not no_plots, retry_failed=retry_failed, log=log)
+                    plots=not no_plots, retry_failed=retry_failed, log=log, uncertainty=uncertainty)
     if res.interrupted:
         done = int(res.table["simulated"].sum())
         typer.echo(f"interrupted: {res.n_run} simulations finished this run, {done} of {res.n_to_simulate} in "

@@ -79,6 +79,22 @@ def in_band(brake_margin, tyre_margin, band) -> np.ndarray:
     return ((b >= lo) & (b <= hi)) | ((t >= lo) & (t <= hi))
 
 
+def with_rollaway_probability(table: pd.DataFrame, base: Scenario, draws: int, seed: int = 0) -> pd.DataFrame:
+    """Add ``rollaway_probability`` per valid point: *draws* from the base model's covariance (one loop per point)."""
+    from rollaway.uncertainty import rollaway_risk
+    out = table.copy()
+    prob = np.full(len(out), np.nan)
+    for i in np.flatnonzero((out["error"] == "").to_numpy()):
+        r = out.iloc[i]
+        s = base.replace(mu_drum=float(r["mu_drum"]), initial_drum_temp_C=float(r["initial_drum_temp_C"]),
+                         tyre_road_mu=float(r["tyre_road_mu"]))
+        prob[i] = rollaway_risk(s.model, hand_force_N=float(r["hand_force_N"]), grade_pct=float(r["grade_pct"]),
+                                direction=str(r["direction"]), occupants=int(r["occupants"]),
+                                duration_s=float(r["duration_s"]), draws=draws, seed=seed).rollaway_probability
+    out["rollaway_probability"] = prob
+    return out
+
+
 def analytic_pass(base: Scenario, points: pd.DataFrame, band) -> pd.DataFrame:
     """Analytic margins and verdicts of every point (a copy of *points* with result columns)."""
     out = points.copy()

@@ -20,7 +20,7 @@ from pathlib import Path
 
 import pandas as pd
 
-from rollaway.sweep.analytic import analytic_pass, point_changes
+from rollaway.sweep.analytic import analytic_pass, point_changes, with_rollaway_probability
 from rollaway.sweep.executors import make_executor, make_task, scenario_to_dict
 from rollaway.sweep.spec import SweepSpec
 from rollaway.sweep.store import Journal, drop_records, write_table
@@ -109,7 +109,7 @@ def _write_manifest(spec: SweepSpec, out: Path, n_sim: int) -> None:
 
 def run_sweep(spec: SweepSpec, out_dir: str | Path, *, workers: int | None = None, dask_address: str | None = None,
               simulate: str | None = None, progress: bool = True, simulate_fn=None, plots: bool = True,
-              retry_failed: bool = False, log=None) -> SweepResult:
+              retry_failed: bool = False, log=None, uncertainty: int | None = None) -> SweepResult:
     """Run *spec*, writing into *out_dir*; resumes from the journal already there."""
     log = log or (lambda msg: None)
     start = time.perf_counter()
@@ -117,6 +117,8 @@ def run_sweep(spec: SweepSpec, out_dir: str | Path, *, workers: int | None = Non
     out.mkdir(parents=True, exist_ok=True)
     t0 = time.perf_counter()
     analytic = analytic_pass(spec.base, spec.points, spec.band)
+    if uncertainty:
+        analytic = with_rollaway_probability(analytic, spec.base, uncertainty)
     analytic_wall = time.perf_counter() - t0
     to_sim = select_for_simulation(analytic, simulate or spec.simulate)
     _write_manifest(spec, out, len(to_sim))

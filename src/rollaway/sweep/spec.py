@@ -62,6 +62,15 @@ class SweepSpec:
     def name(self) -> str:
         return Path(self.source).stem
 
+    def with_model(self, model) -> "SweepSpec":
+        """The same sweep on another drum model (its parameter set and effects; the base keeps its T_0)."""
+        import dataclasses
+        p = model.params.replace(initial_drum_temp_C=self.base.initial_drum_temp_C)
+        base = dataclasses.replace(self.base, params=p, model=model.with_params(p))
+        points = self.points.copy()
+        points["point_id"] = point_ids(base, points)
+        return dataclasses.replace(self, base=base, points=points)
+
 
 def _is_number(v) -> bool:
     return isinstance(v, (int, float)) and not isinstance(v, bool)

@@ -87,4 +87,5 @@ def build_table(analytic: pd.DataFrame, records: dict[str, dict], analytic_wall_
     df["sim_outcome"] = df["sim_outcome"].astype(str)
     for col in ("paper_verdict", "analytic_outcome", "outcome", "verdict", "disagreement", "error", "direction"):
         df[col] = df[col].astype(str)
-    return df[list(COLUMNS)]
+    extra = [c for c in ("rollaway_probability",) if c in df.columns]   # with --uncertainty
+    return df[list(COLUMNS) + extra]
