@@ -165,7 +165,9 @@ def _validate_value(key: str, value, where: str) -> float:
                         f"run 'rollaway params' to list the valid names")
     spec = SPEC_BY_NAME[key]
     if isinstance(value, bool) or not isinstance(value, (int, float)):
-        raise UserError(f"{where}: parameter '{key}' must be a number in {spec.unit}, got {value!r}")
+        unit = "without unit" if spec.unit in ("–", "-", "") else f"in {spec.unit}"
+        raise UserError(f"{where}: parameter '{key}' must be a number ({unit}), got {value!r}; "
+                        f"write a plain number without quotes (not \"{value}\")")
     v = float(value)
     if not math.isfinite(v) or not (spec.lower <= v <= spec.upper):
         raise UserError(f"{where}: parameter '{key}' = {value!r} is outside [{spec.lower:g}, {spec.upper:g}] "

@@ -11,6 +11,7 @@ from pathlib import Path
 
 from rollaway.errors import UserError
 
+SWEEP_KEYS = ("grid", "cases", "base", "base_preset", "band")
 SCENARIO_KEYS = ("grade_pct", "hand_force_N", "direction", "occupants", "duration_s")
 
 
@@ -24,7 +25,7 @@ def toml_kind(path) -> str | None:
         data = tomllib.loads(p.read_text(encoding="utf-8"))
     except (tomllib.TOMLDecodeError, UnicodeDecodeError, OSError):
         return None
-    if "grid" in data:
+    if any(k in data for k in SWEEP_KEYS):
         return "sweep"
     if any(k in data for k in SCENARIO_KEYS):
         return "scenario"
@@ -34,7 +35,7 @@ def toml_kind(path) -> str | None:
 def expect_scenario(path, command: str) -> None:
     """UserError when *path* is a sweep file given to a command that takes one scenario."""
     if toml_kind(path) == "sweep":
-        raise UserError(f"{path} is a sweep file (it has a [grid] table), not a scenario; "
+        raise UserError(f"{path} is a sweep file (it has sweep keys such as [grid] or base), not a scenario; "
                         f"'rollaway {command}' takes one scenario (see scenarios/*.toml) — "
                         f"run a sweep with 'rollaway sweep {path}'")
 
