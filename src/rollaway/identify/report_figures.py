@@ -1,4 +1,4 @@
-"""The figures of the bench reports (matplotlib, constrained layout: one layout pass per figure).
+"""The figures of the bench reports (matplotlib, fixed margins: no layout pass at all).
 
 Times are in seconds everywhere (as in the tables); each test has one colour, named in a
 legend with its direction and hand force; fonts are at least 10 pt at the size shown.
@@ -19,7 +19,7 @@ LINESTYLES = ["--", "-", ":", "-."]
 
 def figure(*args, **kw):
     with plt.rc_context(STYLE):
-        return plt.subplots(*args, layout="constrained", **kw)
+        return plt.subplots(*args, **kw)
 
 
 def colors(n):
@@ -58,6 +58,7 @@ def signals_figure(fits):
         models = [Line2D([], [], color="0.2", ls=LINESTYLES[j % 4], label=name) for j, (name, _) in enumerate(fits)]
         axes[0].legend(handles=tests, title="measured", ncol=2, fontsize=9, loc="best")
         axes[1].legend(handles=models, title="model", loc="best")
+        fig.subplots_adjust(left=0.07, right=0.99, bottom=0.12, top=0.92, wspace=0.2)
         return fig
 
 
@@ -84,8 +85,9 @@ def residual_figure(fit, noise: dict, band: float = 2.5, title: str = ""):
                 ax.set_xlabel(name)
             axes[row, 0].set_ylabel(lab)
         tests = [Line2D([], [], color=col, marker="o", ls="", label=lab) for col, lab in zip(cols, test_labels(data))]
-        fig.legend(handles=tests, loc="outside right center", title="test")
+        fig.legend(handles=tests, loc="center right", title="test")
         fig.suptitle(title or f"residuals; grey band ±{band:g}σ of the measurement noise")
+        fig.subplots_adjust(left=0.07, right=0.83, bottom=0.1, top=0.93, wspace=0.08, hspace=0.3)
         return fig
 
 
@@ -93,7 +95,8 @@ def ladder_figure(ladder):
     """RMSE per rung on each channel (own axis each), and the torque curves and residuals before/after."""
     with plt.rc_context(STYLE):
         fig, axes = figure(1, 4, figsize=(15, 4.6), gridspec_kw={"width_ratios": [1, 1, 1.4, 1.4]})
-        names = [n.strip() for n, _ in ladder.rungs]
+        import textwrap
+        names = [textwrap.fill(n.strip(), 22) for n, _ in ladder.rungs]
         y = np.arange(len(names))[::-1]
         for ax, vals, unit, color, what in (
                 (axes[0], [f.rmse_torque_Nm for _, f in ladder.rungs], "N·m", "tab:blue", "torque"),
@@ -124,5 +127,6 @@ def ladder_figure(ladder):
         handles = ([Line2D([], [], color=c, marker="o", ls="", label=lab) for c, lab in zip(cols, test_labels(data))]
                    + [Line2D([], [], color="0.2", ls="--", label="calibrated paper model"),
                       Line2D([], [], color="0.2", ls="-", label="refined model")])
-        fig.legend(handles=handles, loc="outside right center", fontsize=9)
+        fig.legend(handles=handles, loc="center right", fontsize=9)
+        fig.subplots_adjust(left=0.17, right=0.84, bottom=0.13, top=0.92, wspace=0.3)
         return fig
