@@ -61,7 +61,7 @@ def shoe_factor(params: BrakeParameters, direction, mu_drum: ArrayLike | None = 
 def drum_brake(params: BrakeParameters | None = None, *, time_s: ArrayLike, hand_force_N: ArrayLike,
                direction="downhill", mu_drum: ArrayLike | None = None, gap_m: ArrayLike | None = None,
                initial_temp_C: ArrayLike | None = None) -> BrakeSeries:
-    """Run the paper's model (MODEL.md items 1–7) for one drum.
+    """Run the paper's model (docs/model.md, "Model chain" items 1–7) for one drum.
 
     Parameters default to the set's values; any of them may be an array.
     """

@@ -2,7 +2,7 @@
 
 Each function draws one figure from the vectorised model and returns the path written.
 Per-drum torque is T_gen (eq. 17b); comparisons with the demand T_req (eq. 23) use the
-axle torque 2·T_gen (two rear drums behind one equaliser, MODEL.md item 7).
+axle torque 2·T_gen (two rear drums behind one equaliser, docs/model.md, "Model chain" item 7).
 """
 from __future__ import annotations
 
