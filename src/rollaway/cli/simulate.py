@@ -87,10 +87,10 @@ def simulate(
     check_choice(fmt, REPORT_FORMATS, "--format")
     check_choice(mode, MODES, "--mode")
     render_opts = {"size": parse_size(size), "fps": fps, "after_s": after_s, "multisample": multisample}
+    from rollaway.sim.render import check_render_options
+    check_render_options(**render_opts)
     if render is not None:
         check_render_path(render)
-        from rollaway.sim.render import check_render_options
-        check_render_options(**render_opts)
     if json_file is not None:
         ensure_parent_dir(json_file, "--json")
     expect_scenario(scenario_file, "simulate")

@@ -106,6 +106,10 @@ class FitResult:
     def __repr__(self) -> str:
         return self.report()
 
+    def _repr_html_(self) -> str:  # notebooks
+        from rollaway.display import fit_html
+        return fit_html(self)
+
 
 def _stage(model: BenchModel, names: list[str], fixed: dict, start: dict, residual_fn, info: dict | None = None):
     """One least-squares stage over *names*; returns values, stderr, rss, n.

@@ -90,6 +90,10 @@ class SimResult:
         d = {f.name: getattr(self, f.name) for f in fields(self) if f.name != "trace"}
         return to_jsonable(d)
 
+    def _repr_html_(self) -> str:  # notebooks
+        from rollaway.display import sim_result_html
+        return sim_result_html(self)
+
 
 def _margin(capacity_Nm: float, demand_Nm: float) -> float:
     """Brake margin capacity/demand; ∞ on a flat road (no demand; reported as None in JSON)."""
