@@ -15,3 +15,11 @@ echo; echo "== 4. sweep: grade x occupants x hand force, MuJoCo on the hold/roll
 rollaway sweep scenarios/sweeps/grade-load.toml --out out/grade-load --quiet
 echo; echo "== 5. the paper's Figures 9-14"
 rollaway paper
+echo
+echo "== done. What was written, and what to open:"
+echo "  renders/quickstart/hot-parking-rollaway.mp4   the car rolling away when the drum has cooled (open it)"
+echo "  renders/quickstart/hot-parking-rollaway.json  that simulation's result as data"
+echo "  out/grade-load/design-chart.png                least hand force against grade, per load (open it)"
+echo "  out/grade-load/map-grade-*.png                 hold / roll-away maps; results.csv holds every point"
+echo "  renders/paper/fig09..fig14*.png                the paper's Figures 9-14 redrawn"
+echo "  docs/model.md                                  the model, equation by equation"

@@ -10,7 +10,10 @@ done
 if [ ${#need[@]} -gt 0 ]; then
   if [ "$(id -u)" = 0 ]; then
     echo "[install] apt-get install ${need[*]}"
-    apt-get update -qq && DEBIAN_FRONTEND=noninteractive apt-get install -y -qq "${need[@]}" >/dev/null
+    log=$(mktemp)   # apt and debconf talk a lot: keep it in a log, show it only on failure
+    if ! { apt-get update -qq && DEBIAN_FRONTEND=noninteractive apt-get install -y -qq "${need[@]}"; } >"$log" 2>&1; then
+      cat "$log" >&2; exit 1
+    fi
   else
     echo "[install] missing system packages ${need[*]}: run 'sudo apt-get install -y ${need[*]}'" >&2
   fi

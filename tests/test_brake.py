@@ -1,4 +1,4 @@
-"""The baseline reproduces the independent reference values (MODEL.md) to 1e-6."""
+"""The baseline reproduces the independent reference values (docs/model.md) to 1e-6."""
 import csv
 
 import numpy as np

@@ -98,7 +98,13 @@ def simulated_check(names, params: BrakeParameters | None, fmt: str) -> int:
     """Run the gate on *names* (presets and/or scenario files); print the table; 0 pass, 1 fail."""
     pairs = gate_scenarios(list(names or DEFAULT_TARGETS), params)
     cols = gate_table(pairs)
-    write_table(cols, fmt, precision=4)
+    if fmt == "table":      # the screen table: the columns that decide, short names (csv/json keep them all)
+        short = {"scenario": "scenario", "grade_pct": "grade %", "occupants": "occ.", "hand_force_N": "force N",
+                 "brake_margin_min": "brake margin", "tyre_margin": "tyre margin", "sim_outcome": "simulated",
+                 "verdict": "verdict"}
+        write_table({v: cols[k] for k, v in short.items()}, fmt, precision=3)
+    else:
+        write_table(cols, fmt, precision=4)
     failed = [i for i, v in enumerate(cols["verdict"]) if v == "FAIL"]
     say = (lambda m: typer.echo(m)) if fmt == "table" else (lambda m: print(m, file=sys.stderr))
     if fmt == "table":

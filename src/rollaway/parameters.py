@@ -1,7 +1,7 @@
 """Named parameter sets and their validation.
 
 The set ``paper`` is Table 1 of Ishak et al. (2018) plus the values the paper does
-not give, each marked **assumed** with the reason (see ``shared/spec/MODEL.md``).
+not give, each marked **assumed** with the reason (see ``docs/model.md``, section "Parameters").
 Users load their own set from TOML::
 
     extends = "paper"        # optional: start from a named set, override some keys
@@ -23,7 +23,7 @@ from rollaway.errors import UserError, read_toml, suggest
 
 PAPER = "Ishak et al. 2018, Table 1"
 EQ24 = "Ishak et al. 2018, eq. (24) (fit to bench data)"
-ASSUMED = "assumed (MODEL.md)"
+ASSUMED = "assumed (docs/model.md, Parameters)"
 
 
 @dataclass(frozen=True)
@@ -165,7 +165,9 @@ def _validate_value(key: str, value, where: str) -> float:
                         f"run 'rollaway params' to list the valid names")
     spec = SPEC_BY_NAME[key]
     if isinstance(value, bool) or not isinstance(value, (int, float)):
-        raise UserError(f"{where}: parameter '{key}' must be a number in {spec.unit}, got {value!r}")
+        unit = "without unit" if spec.unit in ("–", "-", "") else f"in {spec.unit}"
+        raise UserError(f"{where}: parameter '{key}' must be a number ({unit}), got {value!r}; "
+                        f"write a plain number without quotes (not \"{value}\")")
     v = float(value)
     if not math.isfinite(v) or not (spec.lower <= v <= spec.upper):
         raise UserError(f"{where}: parameter '{key}' = {value!r} is outside [{spec.lower:g}, {spec.upper:g}] "
@@ -179,7 +181,7 @@ PARAMETER_SETS: dict[str, dict[str, float]] = {
 
 
 def paper() -> BrakeParameters:
-    """The ``paper`` set: Ishak et al. (2018) Table 1 plus the assumed values of MODEL.md."""
+    """The ``paper`` set: Ishak et al. (2018) Table 1 plus the assumed values of docs/model.md."""
     return BrakeParameters(**PARAMETER_SETS["paper"], name="paper")
 
 

@@ -37,7 +37,7 @@ PRESETS: dict[str, Preset] = {p.name: p for p in (
     Preset("paper30", 30.0, 445.0, 3600.0, ("downhill", "uphill"), 1, 200.0,
            "Ishak et al. 2018, Introduction (after Thiessen 1987): 30 % gradient with ≤ 445 N on a "
            "hand lever, held over any desired time; the paper's 1 h cooling from 200 °C",
-           "driver only (1320 kg), as in MODEL.md's T_req on 30 %"),
+           "driver only (1320 kg), as in docs/model.md's T_req on 30 %"),
 )}
 
 

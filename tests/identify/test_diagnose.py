@@ -104,7 +104,7 @@ def test_cli_synth_is_deterministic_and_compare_fit_run(tmp_path, run_cli):
     code, out, err = run_cli("fit", a, "--effect", "lining_creep", "--plot", tmp_path / "f.png",
                              "--effect-file", PLUGIN)
     assert code == 0, err
-    assert "baseline + lining_creep" in out and (tmp_path / "f.png").stat().st_size > 1000
+    assert "calibrated + lining_creep" in out and (tmp_path / "f.png").stat().st_size > 1000
     _USER.pop("ratchet_slip", None)
 
 

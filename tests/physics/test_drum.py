@@ -8,7 +8,7 @@ from rollaway.physics import drum, vehicle, cooling
 
 def test_eq16a_linearisation_of_model_md():
     p = paper()
-    # MODEL.md: at the paper's values F_l0 ≈ 2.4992e8·u6 + 33.99·ΔT
+    # docs/model.md: at the paper's values F_l0 ≈ 2.4992e8·u6 + 33.99·ΔT
     assert float(unenergised_force(p, 1e-4, 0.0)) == pytest.approx(2.4992e4, rel=1e-4)
     assert float(unenergised_force(p, 0.0, 1.0)) == pytest.approx(33.99, rel=1e-3)
 

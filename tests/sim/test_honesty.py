@@ -1,4 +1,4 @@
-"""Numerical honesty of the MuJoCo car (issue 3 item 3): creep, hold/slip threshold, tyre skid.
+"""Numerical honesty of the MuJoCo car: creep, hold/slip threshold, tyre skid.
 
 Measured on the compiled car with the rear hinges' frictionloss written directly (creep and
 skid) and end to end through simulate() with the drum model (threshold).

@@ -39,3 +39,28 @@ def test_render_files(small, tmp_path, suffix):
     assert frames.std() > 10                       # not a blank picture
     if suffix != ".png":
         assert frames.shape[0] > 5
+
+
+def test_render_options_and_rollaway_shown(tmp_path):
+    """--size/--fps are obeyed and the video goes on after the roll-away until the car has visibly moved."""
+    s = make_scenario(grade_pct=20, tyre_road_mu=0.3, duration_s=3)
+    path = tmp_path / "r.gif"
+    r = simulate(s, render=path, render_options={"size": (96, 64), "fps": 5, "after_s": 8.0})
+    frames = iio.imread(path, index=None)
+    assert frames.shape[1:3] == (64, 96)
+    t_end = r.rollaway_time_s + 8.0
+    assert frames.shape[0] >= int(5 * (t_end - max(r.rollaway_time_s - render.REALTIME_BEFORE_S, 0))
+                                  / max(1, np.ceil(t_end / render.MAX_AFTER_VIDEO_S))) - 1
+
+
+def test_frame_times_speeds_up_a_long_rollaway():
+    t, speed = frame_times(100.0, 10.0, 10)
+    assert speed[-1] == np.ceil(92.0 / render.MAX_AFTER_VIDEO_S) and t[-1] <= 100.0
+    assert (speed[t >= 8.0] > 1).all()
+
+
+def test_extension_keeps_the_result(tmp_path):
+    s = make_scenario(grade_pct=20, tyre_road_mu=0.3, duration_s=3)
+    a = simulate(s)
+    b = simulate(s, render=tmp_path / "x.png")
+    assert a.outcome == b.outcome and a.rollaway_time_s == pytest.approx(b.rollaway_time_s)

@@ -1,18 +1,16 @@
 """Command-line entry point: ``rollaway COMMAND ...``.
 
 Every command lives in its own module ``rollaway.cli.<name>`` with a ``register(app)``
-function.  User mistakes (:class:`rollaway.errors.UserError`, click usage errors) print
+function, imported only when the command is used (:class:`rollaway.cli.app.LazyGroup`).  User mistakes (:class:`rollaway.errors.UserError`, click usage errors) print
 one line on stderr and exit with code 2; no traceback.
 """
 from __future__ import annotations
 
-import importlib
-import importlib.util
 import sys
 
 import typer
 
-from rollaway.cli.app import app
+from rollaway.cli.app import COMMANDS, app  # noqa: F401  (COMMANDS: the command list, re-exported)
 from rollaway.errors import UserError
 
 try:  # typer >= 0.22 carries its own copy of click
@@ -20,12 +18,6 @@ try:  # typer >= 0.22 carries its own copy of click
 except ImportError:  # pragma: no cover - older typer on real click
     from click.exceptions import NoArgsIsHelpError, UsageError
 
-COMMANDS = ("brake", "hold", "check", "params", "paper", "simulate", "sweep", "compare", "diagnose", "fit", "synth")
-
-for _name in COMMANDS:
-    # a command module that is not in this checkout yet is simply not offered
-    if importlib.util.find_spec(f"rollaway.cli.{_name}") is not None:
-        importlib.import_module(f"rollaway.cli.{_name}").register(app)
 
 
 def _command_path(args: list[str]) -> str:

@@ -7,7 +7,7 @@ import numpy as np
 import typer
 
 from rollaway.cli.output import FORMATS, write_table
-from rollaway.errors import check_choice
+from rollaway.errors import UserError, check_choice
 from rollaway.hold import analytic_verdict, minimum_hand_force_N
 from rollaway.model_file import load_model
 from rollaway.regulations import PRESETS, get_preset
@@ -44,16 +44,18 @@ def analytic_rows(preset_names, params, uncertainty: int | None = None) -> dict[
 
 def check(
     targets: Optional[List[str]] = typer.Argument(
-        None, metavar="SCENARIO",
+        None, metavar="TARGET...",
         help="regulation presets (fmvss135, unr13h, paper30, or 'all') and, without --analytic, scenario "
              "TOML files; default: fmvss135 unr13h"),
     analytic: bool = typer.Option(False, "--analytic", help="use the paper's analytic check (no simulation)"),
-    params: Optional[str] = typer.Option(None, "--params", help="parameter set name, parameter file or model file "
-                                                                "(.toml; default: paper)"),
-    uncertainty: Optional[int] = typer.Option(None, "--uncertainty",
+    params: Optional[str] = typer.Option(None, "--params", metavar="MODEL",
+                                         help="parameter set name, parameter file or model file (.toml; default: "
+                                              "paper)"),
+    uncertainty: Optional[int] = typer.Option(None, "--uncertainty", metavar="N",
                                               help="with --analytic: N draws from the model file's covariance; adds "
                                                    "the roll-away probability of each case"),
-    fmt: str = typer.Option("table", "--format", help="csv | json | table"),
+    fmt: str = typer.Option("table", "--format", metavar="FORMAT",
+                            help="csv | json | table (every row carries its verdict PASS/FAIL)"),
 ) -> int:
     """Regulation hold checks (the CI gate); exit 0 when every case holds, 1 when any fails.
 
@@ -68,9 +70,17 @@ def check(
     if names == ["all"]:
         names = list(PRESETS)
     if not analytic:
-        from rollaway.compliance import simulated_check  # MuJoCo gate (issue 4)
+        from rollaway.cli.inputs import expect_scenario
+        from rollaway.compliance import simulated_check  # the MuJoCo gate
+        for n in names:
+            if n not in PRESETS:
+                expect_scenario(n, "check")
         return simulated_check(names, p if params else None, fmt)
     for n in names:
+        if n not in PRESETS and n.lower().endswith(".toml"):
+            raise UserError(f"'{n}' is a scenario file; --analytic checks the regulation presets "
+                            f"({', '.join(PRESETS)}) — simulate the file with 'rollaway check {n}' (no --analytic) "
+                            f"or check one case with 'rollaway hold'")
         get_preset(n)
     cols = analytic_rows(names, p, uncertainty)
     write_table(cols, fmt, precision=4)

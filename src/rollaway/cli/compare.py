@@ -5,29 +5,33 @@ from typing import List, Optional
 
 import typer
 
-from rollaway.cli.identify_common import load_data, load_plugins, prepare_outputs, parse_effects, write_outputs
+from rollaway.cli.identify_common import FORMAT_HELP, load_data, load_plugins, prepare_outputs, parse_effects, write_outputs
 
 
 def compare(
-    data: str = typer.Argument(..., help="measurement CSV: test_id,direction,hand_force_N,time_s,drum_temp_C,"
+    data: str = typer.Argument(..., metavar="DATA_CSV", help="measurement CSV: test_id,direction,hand_force_N,time_s,drum_temp_C,"
                                          "torque_Nm[,ambient_C]"),
-    params: Optional[str] = typer.Option(None, "--params", help="parameter set name or TOML file (default: paper)"),
-    effect: List[str] = typer.Option([], "--effect", help="add an effect: NAME or NAME=param=value,... "
+    params: Optional[str] = typer.Option(None, "--params", metavar="SET", help="parameter set name or TOML file (default: paper)"),
+    effect: List[str] = typer.Option([], "--effect", metavar="EFFECT", help="add an effect: NAME or NAME=param=value,... "
                                                           "(repeatable; unset parameters take typical values)"),
-    effect_file: List[str] = typer.Option([], "--effect-file", help="Python file defining Effect subclasses"),
+    effect_file: List[str] = typer.Option([], "--effect-file", metavar="FILE", help="Python file defining Effect subclasses"),
     calibrated: bool = typer.Option(False, "--calibrate", help="fit μ_d, h and the effects' parameters first"),
-    report: Optional[str] = typer.Option(None, "--report", help="write a self-contained HTML report here"),
-    json_out: Optional[str] = typer.Option(None, "--json", help="write the errors and findings as JSON here"),
+    report: Optional[str] = typer.Option(None, "--report", metavar="FILE", help="write a self-contained HTML report here"),
+    json_out: Optional[str] = typer.Option(None, "--json", metavar="FILE", help="write the errors and findings as JSON here"),
+    fmt: str = typer.Option("text", "--format", metavar="FORMAT", help=FORMAT_HELP),
 ) -> None:
     """Errors of the model (paper defaults unless --calibrate) on both channels, per test and overall:
     RMSE, bias, worst error; residual trends and the tests/time ranges outside the noise band."""
     from rollaway.identify.compare import compare as run
 
+    from rollaway.cli.output import REPORT_FORMATS
+    from rollaway.errors import check_choice
+    check_choice(fmt, REPORT_FORMATS, "--format")
     prepare_outputs(report=report, json_out=json_out)
     load_plugins(effect_file)
     effects = parse_effects(effect)
     cmp = run(load_data(data), params, effects, calibrated=calibrated)
-    write_outputs(cmp, report=report, json_out=json_out)
+    write_outputs(cmp, report=report, json_out=json_out, fmt=fmt)
 
 
 def register(app: typer.Typer) -> None:

@@ -5,33 +5,37 @@ from typing import List, Optional
 
 import typer
 
-from rollaway.cli.identify_common import load_data, load_plugins, prepare_outputs, parse_effects, write_outputs
+from rollaway.cli.identify_common import FORMAT_HELP, load_data, load_plugins, prepare_outputs, parse_effects, write_outputs
 
 
 def fit(
-    data: str = typer.Argument(..., help="measurement CSV (see 'rollaway compare --help')"),
-    effect: List[str] = typer.Option(..., "--effect", help="effect to add: NAME or NAME=param=start,... "
+    data: str = typer.Argument(..., metavar="DATA_CSV", help="measurement CSV (see 'rollaway compare --help')"),
+    effect: List[str] = typer.Option(..., "--effect", metavar="EFFECT", help="effect to add: NAME or NAME=param=start,... "
                                                            "(repeatable, in ladder order)"),
-    params: Optional[str] = typer.Option(None, "--params", help="parameter set name or TOML file (default: paper)"),
-    effect_file: List[str] = typer.Option([], "--effect-file", help="Python file defining Effect subclasses"),
-    plot: Optional[str] = typer.Option(None, "--plot", help="draw the ladder and before/after curves to this PNG"),
-    report: Optional[str] = typer.Option(None, "--report", help="write a self-contained HTML report here"),
-    json_out: Optional[str] = typer.Option(None, "--json", help="write the ladder and parameters as JSON here"),
-    save_model: Optional[str] = typer.Option(None, "--save-model", metavar="FILE.toml",
+    params: Optional[str] = typer.Option(None, "--params", metavar="SET", help="parameter set name, parameter file or model file (default: paper)"),
+    effect_file: List[str] = typer.Option([], "--effect-file", metavar="FILE", help="Python file defining Effect subclasses"),
+    plot: Optional[str] = typer.Option(None, "--plot", metavar="FILE", help="draw the ladder and before/after curves to this PNG"),
+    report: Optional[str] = typer.Option(None, "--report", metavar="FILE", help="write a self-contained HTML report here"),
+    json_out: Optional[str] = typer.Option(None, "--json", metavar="FILE", help="write the ladder and parameters as JSON here"),
+    fmt: str = typer.Option("text", "--format", metavar="FORMAT", help=FORMAT_HELP),
+    save_model: Optional[str] = typer.Option(None, "--save-model", metavar="FILE",
                                              help="write the calibrated model (effects, fitted values, covariance, "
-                                                  "provenance) for --params of every command"),
+                                                  "provenance) as TOML for --params of every command"),
 ) -> None:
     """Error ladder: paper defaults → calibrated baseline → + each effect (each rung calibrated), with the
     fitted parameters, 95 % intervals and bound warnings."""
     from rollaway.identify.ladder import fit as run
 
+    from rollaway.cli.output import REPORT_FORMATS
+    from rollaway.errors import check_choice
+    check_choice(fmt, REPORT_FORMATS, "--format")
     prepare_outputs(report=report, json_out=json_out, plot=plot, save_model=save_model)
     load_plugins(effect_file)
     effects = parse_effects(effect)
     d = load_data(data)
     start = {f"{n}.{k}": v for n, vals in effects.items() for k, v in vals.items()}
     ladder = run(d, list(effects), params, start=start)
-    write_outputs(ladder, report=report, json_out=json_out, plot=plot)
+    write_outputs(ladder, report=report, json_out=json_out, plot=plot, fmt=fmt)
     if save_model:
         from rollaway.identify.export import save_fit
         typer.echo(f"model: {save_fit(ladder.final, save_model, data, 'fit')} (use it with --params)")

@@ -23,11 +23,22 @@ def parse_effects(specs) -> dict[str, dict[str, float]]:
     return out
 
 
+FORMAT_HELP = "text | json (the result, decision first, on stdout)"
+
+
 def load_data(path):
     """Load a measurement CSV (validated) and print its notes on stderr."""
+    from pathlib import Path
+
     import typer
 
+    from rollaway.errors import UserError
     from rollaway.identify.measurements import load_measurements
+    if Path(path).is_dir():
+        csvs = sorted(p.name for p in Path(path).glob("*.csv"))
+        hint = f" (it holds {', '.join(csvs[:3])}{', ...' if len(csvs) > 3 else ''})" if csvs else ""
+        raise UserError(f"'{path}' is a folder; give one measurement CSV file{hint}, e.g. "
+                        f"'rollaway compare bench.csv' (make one with 'rollaway synth --out bench.csv')")
     data = load_measurements(path)
     for note in data.notes:
         typer.echo(f"note: {note}", err=True)
@@ -42,21 +53,27 @@ def prepare_outputs(**paths) -> None:
             ensure_parent_dir(path, "--" + flag.replace("_out", "").replace("_", "-"))
 
 
-def write_outputs(result, *, report=None, json_out=None, plot=None) -> None:
-    """Print *result*'s summary, then write the HTML report, JSON and plot the user asked for."""
+def write_outputs(result, *, report=None, json_out=None, plot=None, fmt: str = "text") -> None:
+    """Print *result*'s summary (text) or its data (json, decision included) on stdout, then write the
+    HTML report, JSON file and plot the user asked for (their paths on stderr with --format json)."""
     import json
 
     import typer
 
+    from rollaway.cli.output import echo_json
     from rollaway.jsonsafe import to_jsonable
-    typer.echo(result.summary())
+    if fmt == "json":
+        echo_json(result.as_dict())
+    else:
+        typer.echo(result.summary())
+    say = (lambda m: typer.echo(m, err=True)) if fmt == "json" else typer.echo
     if plot:
         result.plot(plot)
-        typer.echo(f"plot: {plot}")
+        say(f"plot: {plot}")
     if report:
         result.report(report)
-        typer.echo(f"report: {report}")
+        say(f"report: {report}")
     if json_out:
         with open(json_out, "w", encoding="utf-8") as fh:
             json.dump(to_jsonable(result.as_dict()), fh, indent=2)
-        typer.echo(f"json: {json_out}")
+        say(f"json: {json_out}")

@@ -3,13 +3,14 @@ from typing import Optional
 
 import typer
 
-DIRECTION = typer.Option("downhill", "--direction", help="vehicle facing 'downhill' or 'uphill'")
+DIRECTION = typer.Option("downhill", "--direction", metavar="DIRECTION", help="vehicle facing 'downhill' or 'uphill'")
 MU_DRUM: Optional[float] = typer.Option(None, "--mu", help="shoe/drum friction μ_d [–] (default: the set's, 0.4)")
 T0_C: Optional[float] = typer.Option(None, "--t0-C", help="drum temperature when the lever is applied [°C]")
 DT_S = typer.Option(600.0, "--dt-s", help="time step of the printed series [s]")
 PARAMS: Optional[str] = typer.Option(
-    None, "--params", help="parameter set name, parameter file or model file (.toml; default: paper)")
+    None, "--params", metavar="MODEL", help="parameter set name, parameter file or model file (.toml; default: paper)")
 UNCERTAINTY: Optional[int] = typer.Option(
-    None, "--uncertainty", help="draw N parameter vectors from the model file's covariance: roll-away probability")
-SEED = typer.Option(0, "--seed", help="random seed of the --uncertainty draws")
-FORMAT = typer.Option("table", "--format", help="csv | json | table")
+    None, "--uncertainty", metavar="N",
+    help="draw N parameter vectors from the model file's covariance: roll-away probability")
+SEED = typer.Option(0, "--seed", metavar="N", help="random seed of the --uncertainty draws")
+FORMAT = typer.Option("table", "--format", metavar="FORMAT", help="csv | json | table")

@@ -10,6 +10,14 @@ from rollaway.errors import check_choice
 from rollaway.jsonsafe import to_jsonable
 
 FORMATS = ("csv", "json", "table")
+REPORT_FORMATS = ("text", "json")     # commands whose result is a decision plus evidence
+
+
+def echo_json(obj, out=None) -> None:
+    """Print *obj* as strict JSON (NaN/inf → null) on *out* (stdout)."""
+    out = sys.stdout if out is None else out
+    json.dump(to_jsonable(obj), out, indent=1)
+    out.write("\n")
 
 
 def _fmt(v) -> str:

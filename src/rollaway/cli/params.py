@@ -11,8 +11,8 @@ from rollaway.parameters import SPEC_BY_NAME
 
 
 def params(
-    source: Optional[str] = typer.Argument(None, help="set name (paper) or TOML file"),
-    fmt: str = typer.Option("table", "--format", help="csv | json | table"),
+    source: Optional[str] = typer.Argument(None, metavar="SET", help="set name (paper) or TOML file"),
+    fmt: str = typer.Option("table", "--format", metavar="FORMAT", help="csv | json | table"),
 ) -> None:
     """List every parameter of a set: value, unit, source; 'assumed' marks values not in the paper's Table 1."""
     model = load_model(source)
@@ -22,7 +22,8 @@ def params(
         "symbol": [SPEC_BY_NAME[k].symbol for k in d],
         "value": [float(v) for v in d.values()],
         "unit": [SPEC_BY_NAME[k].unit for k in d],
-        "assumed": ["yes" if SPEC_BY_NAME[k].assumed else "" for k in d],
+        "assumed": [bool(SPEC_BY_NAME[k].assumed) if fmt == "json" else ("yes" if SPEC_BY_NAME[k].assumed else "")
+                    for k in d],
         "source": [SPEC_BY_NAME[k].source for k in d],
     }
     for e in model.effects:          # a model file's effects: their values, after the set's

@@ -7,8 +7,8 @@ from typing import Optional
 
 import typer
 
-from rollaway.cli.output import write_table
-from rollaway.errors import check_choice, ensure_parent_dir
+from rollaway.cli.output import REPORT_FORMATS, echo_json, write_table
+from rollaway.errors import UserError, check_choice, ensure_parent_dir
 
 _LABELS = (
     ("outcome", "outcome", ""), ("rollaway_time_s", "roll-away time", "s"),
@@ -21,6 +21,8 @@ _LABELS = (
     ("drum_temp_C_end", "drum temperature at the end", "°C"), ("sim_time_s", "simulated time", "s"),
     ("integrated_time_s", "of which integrated by MuJoCo", "s"), ("wall_time_s", "wall time", "s"),
 )
+VERDICTS = {"held": "HOLDS", "brake_slip": "ROLLS AWAY (the drum brake slips)",
+            "tyre_skid": "ROLLS AWAY (the rear tyres skid)"}
 
 
 def _cell(v) -> str:
@@ -31,49 +33,98 @@ def _cell(v) -> str:
     return str(v)
 
 
+def parse_size(text: str | None) -> tuple[int, int] | None:
+    """``"640x480"`` → (640, 480); UserError naming the option otherwise."""
+    if text is None:
+        return None
+    parts = text.lower().replace("×", "x").split("x")
+    try:
+        w, h = (int(p) for p in parts)
+    except ValueError:
+        raise UserError(f"--size {text!r}: give WIDTHxHEIGHT in pixels, e.g. --size 640x480") from None
+    if not (16 <= w <= 3840 and 16 <= h <= 2160):
+        raise UserError(f"--size {text}: each side must be 16–3840 px wide and 16–2160 px high, e.g. 640x480")
+    return w, h
+
+
+def payload(scenario, result, scenario_file) -> dict:
+    """The result as a JSON object with the decision first."""
+    d = result.to_dict()
+    return {"verdict": VERDICTS.get(d["outcome"], d["outcome"]), "holds": d["outcome"] == "held", **d,
+            "scenario_file": str(scenario_file), "grade_pct": scenario.grade_pct, "direction": scenario.direction,
+            "occupants": scenario.occupants, "hand_force_N": scenario.hand_force_N,
+            "duration_s": scenario.duration_s}
+
+
 def simulate(
-    scenario_file: Path = typer.Argument(..., help="scenario TOML file (see scenarios/*.toml)"),
-    render: Optional[str] = typer.Option(None, "--render", help="write a video/picture: FILE.mp4, FILE.gif or FILE.png"),
-    json_file: Optional[str] = typer.Option(None, "--json", help="also write the result as JSON to this file"),
-    mode: str = typer.Option("fast", "--mode", help="fast (event-driven skip while at rest) | fixed (plain 1 ms stepping)"),
-    params: Optional[str] = typer.Option(None, "--params", help="drum model for this run: a set name, parameter "
-                                         "file or model file (.toml; replaces the scenario's 'params')"),
-    uncertainty: Optional[int] = typer.Option(None, "--uncertainty", help="draw N parameter vectors from the "
-                                              "model's covariance and simulate the --percentile draw"),
-    percentile: float = typer.Option(5.0, "--percentile", help="with --uncertainty: which draw to simulate, by its "
-                                     "least margin (5 = a pessimistic draw)"),
-) -> None:
+    scenario_file: Path = typer.Argument(..., metavar="SCENARIO_TOML", help="scenario file (see scenarios/*.toml)"),
+    fmt: str = typer.Option("text", "--format", metavar="FORMAT", help="text | json (the result on stdout)"),
+    render: Optional[str] = typer.Option(None, "--render", metavar="FILE",
+                                         help="write a video or picture: FILE.mp4, FILE.gif or FILE.png"),
+    fps: Optional[float] = typer.Option(None, "--fps", metavar="N", help="video frame rate (default: 25 mp4, 10 gif)"),
+    size: Optional[str] = typer.Option(None, "--size", metavar="WxH",
+                                       help="picture size in pixels, e.g. 640x480 (default: 640x360 mp4, "
+                                            "480x270 gif, 960x540 png)"),
+    after_s: float = typer.Option(10.0, "--after-s", metavar="SECONDS",
+                                  help="the video goes on this long after a roll-away (or until 15 m of travel)"),
+    multisample: int = typer.Option(0, "--multisample", metavar="N",
+                                    help="anti-aliasing samples per pixel (0: off, fast under software GL; 4: smooth)"),
+    json_file: Optional[str] = typer.Option(None, "--json", metavar="FILE", help="also write the result as JSON here"),
+    mode: str = typer.Option("fast", "--mode", metavar="MODE",
+                             help="fast (event-driven skip while at rest) | fixed (plain 1 ms stepping)"),
+    params: Optional[str] = typer.Option(None, "--params", metavar="MODEL",
+                                         help="drum model for this run: a set name, parameter file or model file "
+                                              "(.toml; replaces the scenario's 'params')"),
+    uncertainty: Optional[int] = typer.Option(None, "--uncertainty", metavar="N",
+                                              help="draw N parameter vectors from the model's covariance and "
+                                                   "simulate the --percentile draw"),
+    percentile: float = typer.Option(5.0, "--percentile", metavar="Q",
+                                     help="with --uncertainty: which draw to simulate, by its least margin "
+                                          "(5 = a pessimistic draw)"),
+) -> int:
     """Simulate a parked car held by the drum brake in MuJoCo: held, brake_slip or tyre_skid.
 
-    The brake torque comes from the scenario's drum model, effects included (--params FILE.toml
-    from 'rollaway fit --save-model').
+    The verdict is in the output (--format json: "verdict" and "holds"); the exit code is 0 for
+    any finished simulation (use 'rollaway check SCENARIO_TOML' for a pass/fail exit code).
+    The brake torque comes from the scenario's drum model, effects included (--params
+    FILE.toml from 'rollaway fit --save-model').
     """
+    from rollaway.cli.inputs import expect_scenario
     from rollaway.scenario import load_scenario
     from rollaway.sim import simulate as run_sim
     from rollaway.sim.render import check_render_path
     from rollaway.sim.run import MODES
 
+    check_choice(fmt, REPORT_FORMATS, "--format")
     check_choice(mode, MODES, "--mode")
+    render_opts = {"size": parse_size(size), "fps": fps, "after_s": after_s, "multisample": multisample}
+    from rollaway.sim.render import check_render_options
+    check_render_options(**render_opts)
     if render is not None:
         check_render_path(render)
     if json_file is not None:
         ensure_parent_dir(json_file, "--json")
+    expect_scenario(scenario_file, "simulate")
     scenario = load_scenario(scenario_file, params=params)
     if uncertainty is not None:
         scenario = _percentile_draw(scenario, uncertainty, percentile)
-    result = run_sim(scenario, render=render, mode=mode)
-    d = result.to_dict()
-    typer.echo(f"{scenario.name}: {scenario.description}" if scenario.description else scenario.name)
-    write_table({"quantity": [lab for _, lab, _ in _LABELS], "value": [_cell(d[k]) for k, _, _ in _LABELS],
-                 "unit": [u for _, _, u in _LABELS]}, "table")
+    result = run_sim(scenario, render=render, mode=mode, render_options=render_opts)
+    data = payload(scenario, result, scenario_file)
+    if fmt == "json":
+        echo_json(data)
+    else:
+        typer.echo(f"{scenario.name}: {scenario.description}" if scenario.description else scenario.name)
+        d = result.to_dict()
+        write_table({"quantity": [lab for _, lab, _ in _LABELS], "value": [_cell(d[k]) for k, _, _ in _LABELS],
+                     "unit": [u for _, _, u in _LABELS]}, "table")
+        typer.echo(f"verdict: {data['verdict']}")
+    say = (lambda m: typer.echo(m, err=True)) if fmt == "json" else typer.echo
     if render is not None:
-        typer.echo(f"wrote {render}")
+        say(f"wrote {render}")
     if json_file is not None:
-        payload = {**d, "scenario_file": str(scenario_file), "grade_pct": scenario.grade_pct,
-                   "direction": scenario.direction, "occupants": scenario.occupants,
-                   "hand_force_N": scenario.hand_force_N, "duration_s": scenario.duration_s}
-        Path(json_file).write_text(json.dumps(payload, indent=1) + "\n", encoding="utf-8")
-        typer.echo(f"wrote {json_file}")
+        Path(json_file).write_text(json.dumps(data, indent=1) + "\n", encoding="utf-8")
+        say(f"wrote {json_file}")
+    return 0
 
 
 def _percentile_draw(scenario, draws: int, percentile: float):

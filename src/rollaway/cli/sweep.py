@@ -6,8 +6,17 @@ from typing import Optional
 
 import typer
 
+from rollaway.cli.output import REPORT_FORMATS, echo_json
 from rollaway.errors import UserError, check_choice
-from rollaway.sweep.spec import SIMULATE_MODES
+
+
+def summary_dict(res) -> dict:
+    """The sweep's outcome as data: counts per verdict, failures, disagreements, files."""
+    t = res.table
+    return {"points": res.n_points, "hold": int((t["verdict"] == "hold").sum()),
+            "roll": int((t["verdict"] == "roll").sum()), "failed": res.n_failed,
+            "simulated": int(t["simulated"].sum()), "simulated_now": res.n_run, "resumed": res.n_resumed,
+            "disagree": res.n_disagree, "wall_time_s": res.wall_time_s, "files": [str(f) for f in res.files]}
 
 
 def _summary(res) -> None:
@@ -30,26 +39,29 @@ def _summary(res) -> None:
 
 def sweep(
     spec_path: str = typer.Argument(..., metavar="SWEEP_TOML", help="sweep spec (see scenarios/sweeps/)"),
-    out: Optional[str] = typer.Option(None, "--out", help="output folder (default: ./<spec name>-results); "
+    out: Optional[str] = typer.Option(None, "--out", metavar="FOLDER", help="output folder (default: ./<spec name>-results); "
                                       "rerun with the same folder to continue an interrupted sweep"),
-    workers: Optional[int] = typer.Option(None, "--workers", help="local worker processes (default: every core)"),
+    workers: Optional[int] = typer.Option(None, "--workers", metavar="N", help="local worker processes (default: every core)"),
     dask: Optional[str] = typer.Option(None, "--dask", metavar="ADDRESS",
                                        help="send the simulations to this dask.distributed scheduler, "
                                             "e.g. tcp://10.0.0.5:8786"),
-    simulate: Optional[str] = typer.Option(None, "--simulate", help="band | all | none (default: the spec's, band)"),
+    simulate: Optional[str] = typer.Option(None, "--simulate", metavar="MODE", help="band | all | none (default: the spec's, band)"),
     quiet: bool = typer.Option(False, "--quiet", help="no progress bar"),
     no_plots: bool = typer.Option(False, "--no-plots", help="skip the PNG maps and design chart"),
     retry_failed: bool = typer.Option(False, "--retry-failed", help="simulate again the points that failed before"),
-    params: Optional[str] = typer.Option(None, "--params", help="drum model of every point: a set name, parameter "
+    params: Optional[str] = typer.Option(None, "--params", metavar="MODEL", help="drum model of every point: a set name, parameter "
                                          "file or model file (.toml); replaces the base's set, keeps its T_0"),
-    uncertainty: Optional[int] = typer.Option(None, "--uncertainty", help="add each point's roll-away probability "
+    uncertainty: Optional[int] = typer.Option(None, "--uncertainty", metavar="N", help="add each point's roll-away probability "
                                               "from N draws of the model's covariance (slow: one risk per point)"),
+    fmt: str = typer.Option("text", "--format", metavar="FORMAT", help="text | json (the summary on stdout)"),
 ) -> int:
     """Analytic margin of every point, MuJoCo near the hold/roll boundary; table + maps in the output folder.
 
     Exit 0 when the sweep completes (failed points are rows with an 'error'), 130 when interrupted.
     """
+    from rollaway.cli.inputs import expect_sweep
     from rollaway.sweep import load_sweep, run_sweep
+    from rollaway.sweep.spec import SIMULATE_MODES
 
     if simulate is not None:
         check_choice(simulate, SIMULATE_MODES, "--simulate mode")
@@ -58,6 +70,8 @@ def sweep(
     if workers is not None and dask:
         raise UserError("--workers sets local processes; with --dask the cluster's workers run the points — "
                         "give one or the other")
+    check_choice(fmt, REPORT_FORMATS, "--format")
+    expect_sweep(spec_path)
     spec = load_sweep(spec_path)
     if params is not None:
         from rollaway.model_file import load_model
@@ -76,7 +90,10 @@ def sweep(
         typer.echo(f"interrupted: {res.n_run} simulations finished this run, {done} of {res.n_to_simulate} in "
                    f"total are in {out_dir}; run the same command again to continue", err=True)
         return 130
-    _summary(res)
+    if fmt == "json":
+        echo_json(summary_dict(res))
+    else:
+        _summary(res)
     return 0
 
 

@@ -3,7 +3,7 @@
 An effect is a small class with documented physics, the signature it leaves in the
 residuals of the paper's 1D model, parameters with units, bounds and a neutral value,
 and a reference.  It changes the model only through *hooks*, each called at one
-depth of the model chain (MODEL.md items 1–7)::
+depth of the model chain (docs/model.md, "Model chain" items 1–7)::
 
     drum temperature T_d(t)        hook: drum_temperature   (cooling law; the measured channel)
     lining temperature T_l(t)      hook: lining_temperature (what the lining/shoe feels; default T_d)

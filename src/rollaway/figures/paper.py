@@ -2,7 +2,7 @@
 
 Each function draws one figure from the vectorised model and returns the path written.
 Per-drum torque is T_gen (eq. 17b); comparisons with the demand T_req (eq. 23) use the
-axle torque 2·T_gen (two rear drums behind one equaliser, MODEL.md item 7).
+axle torque 2·T_gen (two rear drums behind one equaliser, docs/model.md, "Model chain" item 7).
 """
 from __future__ import annotations
 
@@ -33,17 +33,18 @@ def _save(fig, out_dir: Path, name: str) -> Path:
     return path
 
 
-def _caption(fig, p: BrakeParameters, extra: str = "") -> None:
-    fig.text(0.01, 0.005, f"rollaway · parameter set '{p.name}' · μ_d={p.mu_drum:g} · T_0={p.initial_drum_temp_C:g} °C"
-             f" · τ={p.cooling_time_constant_s:.0f} s {extra}", fontsize=7, color="0.4")
+def _caption(fig, p: BrakeParameters, extra: str = "", mu: bool = True) -> None:
+    """Footer naming the parameter set; *mu* False on figures that sweep μ_d themselves."""
+    mu_text = f" · μ_d={p.mu_drum:g}" if mu else ""
+    fig.text(0.01, 0.005, f"rollaway · parameter set '{p.name}'{mu_text} · T_0={p.initial_drum_temp_C:g} °C"
+             f" · τ={p.cooling_time_constant_s:.0f} s {extra}", fontsize=8, color="0.4")
 
 
 def fig09_temperature(p: BrakeParameters, out_dir: Path) -> Path:
     """Fig. 9: drum temperature against cooling time, eq. (10) (same for every hand force and direction)."""
     fig, ax = plt.subplots(figsize=(7, 4.5))
     temp = drum_temperature(p, TIME_S)
-    for f in HAND_FORCES_N:
-        ax.plot(TIME_S, temp, lw=1.5, label=f"F_hb = {f:g} N")
+    ax.plot(TIME_S, temp, lw=1.8, label="drum, every hand force (eq. 10 does not depend on F_hb)")
     ax.axvline(500, color="0.6", ls=":", lw=1)
     ax.text(510, temp.max() * 0.95, "fast drop before ~500 s", fontsize=8, color="0.3")
     ax.axhline(p.ambient_temp_C, color="0.5", ls="--", lw=1, label=f"ambient {p.ambient_temp_C:g} °C")
@@ -61,8 +62,12 @@ def _torque_vs_time(p: BrakeParameters, out_dir: Path, direction: str, number: s
     s = drum_brake(p, time_s=TIME_S, hand_force_N=f, direction=direction)
     for i, fh in enumerate(HAND_FORCES_N):
         ax.plot(TIME_S, s.torque_Nm[i], lw=1.6, label=f"F_hb = {fh:g} N")
+    # one y scale for Figs 10 and 11 (the larger, downhill torque), so the two directions compare at a glance
+    top = max(float(np.nanmax(drum_brake(p, time_s=TIME_S, hand_force_N=f, direction=d).torque_Nm))
+              for d in ("downhill", "uphill"))
     ax.set(xlabel="time since the lever was applied [s]", ylabel="brake torque of one drum T_gen [N·m]",
-           title=f"Fig. {number} analogue: torque per drum, vehicle facing {direction}", xlim=(0, 3600), ylim=(0, None))
+           title=f"Fig. {number} analogue: torque per drum, vehicle facing {direction}", xlim=(0, 3600),
+           ylim=(0, top * 1.05))
     ax.grid(alpha=0.3)
     ax.legend(fontsize=8, ncol=2)
     _caption(fig, p, "· eqs. (10), (16a), (17b), (18)–(21), (24)")
@@ -114,7 +119,7 @@ def fig13_friction_sweep(p: BrakeParameters, out_dir: Path, hand_force_N: float 
         ax.legend(fontsize=7, ncol=2)
     axes[0].set_ylabel("rear-axle torque 2·T_gen [N·m]")
     fig.suptitle("Fig. 13 analogue: drum/lining friction coefficient (paper: holds above μ ≈ 0.2)")
-    _caption(fig, p)
+    _caption(fig, p, mu=False)
     return _save(fig, out_dir, "fig13_friction_sweep.png")
 
 
@@ -128,7 +133,7 @@ def fig14_occupants(p: BrakeParameters, out_dir: Path, hand_force_N: float = 400
         ax.plot(TIME_S, 2 * s.torque_Nm, lw=2.2, color="C0", label=f"generated 2·T_gen, F_hb = {hand_force_N:g} N")
         for n, tr in zip(occ, t_req):
             m = p.vehicle_mass_kg + n * p.occupant_mass_kg
-            ax.axhline(tr, lw=1.2, ls="--", color=plt.cm.Reds(0.35 + 0.13 * n), label=f"T_req, {n} occupant(s), {m:.0f} kg")
+            ax.axhline(tr, lw=1.2, ls="--", color=plt.cm.Reds(0.35 + 0.13 * n), label=f"T_req, {n} occupant{'' if n == 1 else 's'}, {m:.0f} kg")
         ax.set(title=f"facing {d}", xlabel="time [s]", xlim=(0, 3600), ylim=(0, None))
         ax.grid(alpha=0.3)
         ax.legend(fontsize=7)

@@ -1,4 +1,4 @@
-"""Bench data against the model: compare, diagnose missing physics, refit with effects (issue 5)."""
+"""Bench data against the model: compare, diagnose missing physics, refit with effects."""
 from rollaway.effects import (CATALOGUE, Effect, EffectParameter, available_effects, get_effect,
                                     load_effect_file, register_effect)
 from rollaway.identify.measurements import Measurements, load_measurements

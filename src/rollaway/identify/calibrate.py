@@ -51,6 +51,7 @@ class FitResult:
     n_torque: int
     warnings: list[str] = field(default_factory=list)
     rss_torque_weighted: float | None = None   # the WLS objective (= rss_torque without a noise model)
+    fit_info: dict = field(default_factory=dict)   # per stage: initial values, evaluations, convergence, correlation
 
     @property
     def effects(self) -> list[str]:
@@ -105,9 +106,17 @@ class FitResult:
     def __repr__(self) -> str:
         return self.report()
 
+    def _repr_html_(self) -> str:  # notebooks
+        from rollaway.display import fit_html
+        return fit_html(self)
 
-def _stage(model: BenchModel, names: list[str], fixed: dict, start: dict, residual_fn):
-    """One least-squares stage over *names*; returns values, stderr, rss, n, jac-based warnings."""
+
+def _stage(model: BenchModel, names: list[str], fixed: dict, start: dict, residual_fn, info: dict | None = None):
+    """One least-squares stage over *names*; returns values, stderr, rss, n.
+
+    *info* (a dict) receives the fit diagnostics: initial values, number of evaluations,
+    convergence status and message, and the parameters' correlation matrix.
+    """
     if not names:
         r = residual_fn(dict(fixed))
         return {}, {}, float(r @ r), r.size
@@ -133,7 +142,13 @@ def _stage(model: BenchModel, names: list[str], fixed: dict, start: dict, residu
         cov = np.linalg.pinv(jac.T @ jac) * rss / dof
         se = np.sqrt(np.clip(np.diag(cov), 0, None))
     except np.linalg.LinAlgError:
-        se = np.full(len(names), np.nan)
+        cov, se = None, np.full(len(names), np.nan)
+    if info is not None:
+        with np.errstate(divide="ignore", invalid="ignore"):
+            corr = None if cov is None else cov / np.outer(se, se)
+        info.update(names=list(names), initial=dict(zip(names, (x0 * 1.0).tolist())), nfev=int(res.nfev),
+                    success=bool(res.success), status=int(res.status), message=str(res.message),
+                    n=int(n), rss=rss, correlation=None if corr is None else corr.tolist())
     return dict(zip(names, x)), dict(zip(names, se)), rss, n
 
 
@@ -159,7 +174,8 @@ def calibrate(data: Measurements, effects=(), params=None, *, free=None, start: 
     def temp_res(vals):
         return (model.drum_temperature(data, vals) - data.drum_temp_C)[hot]
 
-    tv, tse, rss_t, n_t = _stage(model, temp_names, fixed, init, temp_res)
+    info_t, info_q = {"channel": "temperature"}, {"channel": "torque"}
+    tv, tse, rss_t, n_t = _stage(model, temp_names, fixed, init, temp_res, info_t)
     fixed.update(tv)
     temp = model.drum_temperature(data, fixed)
 
@@ -168,7 +184,7 @@ def calibrate(data: Measurements, effects=(), params=None, *, free=None, start: 
     def torque_res(vals):   # weighted by 1/σ_i when a noise model is attached (WLS)
         return (model.predict(data, vals, drum_temp_C=temp).torque_Nm - data.torque_Nm) * w
 
-    qv, qse, rss_q, n_q = _stage(model, torque_names, fixed, init, torque_res)
+    qv, qse, rss_q, n_q = _stage(model, torque_names, fixed, init, torque_res, info_q)
     fixed.update(qv)
     pred = model.predict(data, fixed, drum_temp_C=temp)
     estimates, warnings = {}, []
@@ -187,7 +203,8 @@ def calibrate(data: Measurements, effects=(), params=None, *, free=None, start: 
                                 f"({lo if at == 'lower' else hi:g} {model.unit(name)}); the data push it out of "
                                 f"the physical range or the effect is absent — its interval is not meaningful")
     rq = data.torque_Nm - pred.torque_Nm
-    return FitResult(model, data, fixed, estimates, pred, rss_t, float(rq @ rq), n_t, n_q, warnings, rss_q)
+    return FitResult(model, data, fixed, estimates, pred, rss_t, float(rq @ rq), n_t, n_q, warnings, rss_q,
+                     {"stages": [i for i in (info_t, info_q) if "names" in i]})
 
 
 def evaluate(data: Measurements, effects=(), params=None, values: dict | None = None) -> FitResult:

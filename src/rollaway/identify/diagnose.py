@@ -101,6 +101,10 @@ class Diagnosis:
     def __repr__(self):
         return self.summary()
 
+    def _repr_html_(self) -> str:  # notebooks
+        from rollaway.display import diagnosis_html
+        return diagnosis_html(self)
+
     def report(self, path) -> None:
         from rollaway.identify.report import diagnosis_report
         diagnosis_report(self, path)

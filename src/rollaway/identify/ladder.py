@@ -23,8 +23,22 @@ class Ladder:
     def baseline(self) -> FitResult:
         return self.rungs[1][1]
 
+    def verdict(self) -> tuple[str, bool]:
+        """(one sentence on whether the last effect earned its place, True when it did by BIC)."""
+        if len(self.rungs) < 3:
+            return "Only the paper model was fitted; add effects with --effect.", True
+        ref, last = self.rungs[1][1], self.final
+        d = last.bic - ref.bic
+        names = " + ".join(last.effects)
+        ok = d < -10.0
+        return (f"Adding {names} changes BIC by {d:+.1f} against the calibrated paper model "
+                f"({'very strong evidence for it' if ok else 'not enough evidence (needs below −10)'}); torque RMSE "
+                f"{ref.rmse_torque_Nm:.3g} → {last.rmse_torque_Nm:.3g} N·m, temperature RMSE {ref.rmse_temp_C:.3g} → "
+                f"{last.rmse_temp_C:.3g} °C.", ok)
+
     def as_dict(self) -> dict:
-        return {"ladder": [{"model": name, "rmse_torque_Nm": f.rmse_torque_Nm, "rmse_temp_C": f.rmse_temp_C,
+        verdict, ok = self.verdict()
+        return {"verdict": verdict, "effects_supported": ok, "ladder": [{"model": name, "rmse_torque_Nm": f.rmse_torque_Nm, "rmse_temp_C": f.rmse_temp_C,
                             "bic": f.bic if f.k else None, "k": f.k} for name, f in self.rungs],
                 "parameters": {k: e.as_dict() for k, e in self.final.estimates.items()},
                 "warnings": self.final.warnings}
@@ -40,7 +54,11 @@ class Ladder:
         return "\n".join(lines)
 
     def summary(self) -> str:
-        return self.table() + "\n\n" + self.final.report()
+        return self.verdict()[0] + "\n\n" + self.table() + "\n\n" + self.final.report()
+
+    def _repr_html_(self) -> str:  # notebooks
+        from rollaway.identify.report import esc
+        return f"<p><b>{esc(self.verdict()[0])}</b></p><pre>{esc(self.table())}</pre>"
 
     def __repr__(self):
         return self.summary()
@@ -50,7 +68,7 @@ class Ladder:
         ladder_report(self, path)
 
     def plot(self, path=None):
-        from rollaway.identify.report import ladder_figure
+        from rollaway.identify.report_figures import ladder_figure
         fig = ladder_figure(self)
         if path is not None:
             fig.savefig(path, dpi=110, bbox_inches="tight")
@@ -62,8 +80,8 @@ def fit(data: Measurements, effects, params=None, start: dict | None = None) -> 
     chosen = [get_effect(e) for e in effects]
     rungs = [("paper defaults", evaluate(data, (), params))]
     prev = calibrate(data, (), params)
-    rungs.append(("calibrated baseline (μ_d, h)", prev))
+    rungs.append(("calibrated paper model (μ_d, h)", prev))
     for i, eff in enumerate(chosen):
         prev = calibrate(data, chosen[:i + 1], params, start={**prev.values, **(start or {})})
-        rungs.append((("baseline + " if i == 0 else "  + ") + eff.name, prev))
+        rungs.append((("calibrated + " if i == 0 else "  + ") + eff.name, prev))
     return Ladder(data, rungs)

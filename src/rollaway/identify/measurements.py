@@ -1,4 +1,4 @@
-"""Bench measurements: load and validate the CSV format of issue 5.
+"""Bench measurements: load and validate the bench CSV format.
 
 One row per sample, columns ``test_id,direction,hand_force_N,time_s,drum_temp_C,torque_Nm``
 and optionally ``ambient_C``.  Each test starts at ``time_s = 0`` (lever applied); its T_0

@@ -71,7 +71,7 @@ def normal_force_N(unenergised_N: ArrayLike, factor: ArrayLike) -> np.ndarray:
     """Normal force with self-energising and contact loss, F_l = max(F_l0·factor, 0) [N].
 
     Contact is lost (force 0) when the thermal shrinkage would pull the lining off
-    the drum (MODEL.md item 6).  A self-locked shoe (factor ``inf``) with positive
+    the drum (docs/model.md, "Model chain" item 6).  A self-locked shoe (factor ``inf``) with positive
     F_l0 gives ``inf``; with F_l0 ≤ 0 it gives 0 (no contact, nothing to lock).
     """
     f0 = np.asarray(unenergised_N, float)

@@ -4,7 +4,7 @@ The rear-axle load comes from a rigid-body static balance on the slope (any vehi
 dynamics text, e.g. Gillespie, *Fundamentals of Vehicle Dynamics*, 1992, §2; Limpert,
 *Brake Design and Safety*, 1999, §7): the brake force acts at the rear contact
 patches at ground level, so moments about the rear contact give the front load.
-The vehicle geometry is not in the paper and is **assumed** (MODEL.md).
+The vehicle geometry is not in the paper and is **assumed** (docs/model.md).
 """
 from __future__ import annotations
 

@@ -1,4 +1,4 @@
-"""The MuJoCo simulator: a car on a tilted road held by the drum brake (issue 3).
+"""The MuJoCo simulator: a car on a tilted road held by the drum brake.
 
 ``from rollaway.sim import simulate, SimResult, build_model``.
 """

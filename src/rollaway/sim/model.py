@@ -2,18 +2,18 @@
 
 Everything scenario-dependent is set on the spec, never by editing XML text:
 
-* grade: the ``slope`` frame is rotated about y by θ = atan(|grade|/100) (MODEL.md item 8);
+* grade: the ``slope`` frame is rotated about y by θ = atan(|grade|/100) (docs/model.md, "Model chain" item 8);
   downhill is +x of that frame.  A negative grade flips the heading (as in :mod:`rollaway.hold`);
 * heading: facing downhill = car +x along the frame's +x; facing uphill = yawed by π;
 * the car itself from the parameter set: vehicle mass (wheels included), wheel radius,
-  wheelbase, track, centre of gravity, gravity (Table 1 + MODEL.md geometry [assumed]);
+  wheelbase, track, centre of gravity, gravity (Table 1 + docs/model.md, "Vehicle geometry" [assumed]);
 * occupants: 70 kg (``occupant_mass_kg``) bodies welded to the chassis, 1–2 in the front row,
-  3–5 in the rear row (MODEL.md; lateral seat positions are [assumed]);
+  3–5 in the rear row (docs/model.md; lateral seat positions are [assumed]);
 * tyre–road friction μ_r on the tyre geoms (priority 1, so theirs wins) and on the road;
 * the rear hinges' ``frictionloss`` starts at the drum torque at t = 0; it is then driven by
   :class:`rollaway.sim.brake_callback.BrakeController`.
 
-Numerics [assumed, measured — see ``/work/shared/notes/mujoco-findings.md`` and tests/sim]:
+Numerics [assumed, measured — measured in tests/sim]:
 1 ms Euler step, elliptic cone, impratio 1000, Newton solver, stiff joint friction
 (``solreffriction 0.004 1``, ``solimpfriction 0.9999 0.9999 0.001``) and tyre contacts
 (``solref 0.004 1``, ``solimp 0.99 0.9999 0.001``).  MuJoCo's soft friction lets a held
@@ -47,7 +47,7 @@ WHEEL_MASS_KG = 15.0          # [assumed] one wheel with tyre and drum; counts i
 WHEEL_WIDTH_M = 0.2           # [assumed] for the wheel inertia only
 REAR_INVWEIGHT_SCALE = 1e-3   # [assumed] measured: creep 0.3 mm/h instead of ~120 mm/h at 20 %
 CHASSIS_BOX_M = (4.2, 1.7, 1.0)  # [assumed] box whose inertia the chassis gets
-# lateral seat positions, occupants 1..5 (y, +left) [assumed]; rows from MODEL.md
+# lateral seat positions, occupants 1..5 (y, +left) [assumed]; rows from docs/model.md
 SEAT_Y_M = (0.4, -0.4, 0.5, -0.5, 0.0)
 WHEELS = ("fl", "fr", "rl", "rr")
 REAR = ("rl", "rr")

@@ -90,6 +90,10 @@ class SimResult:
         d = {f.name: getattr(self, f.name) for f in fields(self) if f.name != "trace"}
         return to_jsonable(d)
 
+    def _repr_html_(self) -> str:  # notebooks
+        from rollaway.display import sim_result_html
+        return sim_result_html(self)
+
 
 def _margin(capacity_Nm: float, demand_Nm: float) -> float:
     """Brake margin capacity/demand; ∞ on a flat road (no demand; reported as None in JSON)."""
@@ -226,8 +230,12 @@ class _Run:
             wall_time_s=wall_s, drum_temp_C_end=float(ctrl.drum_temp_C[ctrl.index(t[-1])]), trace=tr)
 
 
-def simulate(scenario: Scenario, *, render: str | Path | None = None, mode: str = "fast") -> SimResult:
+def simulate(scenario: Scenario, *, render: str | Path | None = None, mode: str = "fast",
+             render_options: dict | None = None) -> SimResult:
     """Simulate *scenario* in MuJoCo; optionally render it to *render* (.mp4, .gif or .png).
+
+    *render_options*: keyword arguments of :func:`rollaway.sim.render.render_run` (size, fps,
+    after_s, multisample).
 
     ``mode="fast"``: event-driven skip while provably at rest; ``"fixed"``: plain fixed-step.
     ``wall_time_s`` covers building the model and simulating, not the rendering.
@@ -240,5 +248,5 @@ def simulate(scenario: Scenario, *, render: str | Path | None = None, mode: str 
     result = runner.run()
     if render is not None:
         from rollaway.sim.render import render_run
-        render_run(runner, result, render)
+        render_run(runner, result, render, **{k: v for k, v in (render_options or {}).items() if v is not None})
     return result

@@ -1,6 +1,6 @@
 """The analytic pass of a sweep: every point at once, one vectorised call per quantity.
 
-For each point (MODEL.md item 9, via :mod:`rollaway.hold`):
+For each point (docs/model.md, "Model chain" item 9, via :mod:`rollaway.hold`):
 
 * ``brake_margin_min``: the paper's brake hold margin 2·T_gen(t)/T_req, least over the hold.
   ΔT(t) is monotone and the torque affine in ΔT, so the least value is at t = 0 or t = duration;

@@ -148,7 +148,13 @@ def design_chart(table, spec, path) -> Path:
     ax.axhline(REG_HAND_FORCE_N, color="k", lw=1.2)
     ax.text(g[0], REG_HAND_FORCE_N * 1.02, " 400 N hand-force limit (FMVSS 135, UN R13-H)", fontsize=8, va="bottom")
     ax.axvline(REG_GRADE_PCT, color="k", lw=0.8, ls=":")
-    ax.set_ylim(0, max(800.0, REG_HAND_FORCE_N * 1.6))
+    top = max(800.0, REG_HAND_FORCE_N * 1.6)
+    ax.text(REG_GRADE_PCT, top * 0.97, f" {REG_GRADE_PCT:g} % test grade (FMVSS 135, UN R13-H)", fontsize=8,
+            va="top", rotation=90, ha="right")
+    if g[0] <= 0.0:
+        ax.annotate("0 % grade: nothing to hold,\nno hand force needed", (0.0, 0.0), xytext=(g[-1] * 0.03, top * 0.12),
+                    fontsize=8, arrowprops={"arrowstyle": "->", "color": "0.4"})
+    ax.set_ylim(0, top)
     ax.set_xlim(g[0], g[-1])
     ax.set_xlabel(LABELS["grade_pct"])
     ax.set_ylabel("minimum hand force that holds [N]")

@@ -50,6 +50,10 @@ class SweepResult:
     def n_disagree(self) -> int:
         return int((self.table["agree"] == False).sum())  # noqa: E712
 
+    def _repr_html_(self) -> str:  # notebooks
+        from rollaway.display import sweep_html
+        return sweep_html(self)
+
 
 def select_for_simulation(analytic: pd.DataFrame, mode: str) -> pd.DataFrame:
     ok = analytic["error"] == ""
