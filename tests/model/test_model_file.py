@@ -1,0 +1,83 @@
+"""Model files: round trip, validation like any parameter file, accepted by every command."""
+import json
+
+import numpy as np
+import pytest
+
+from rollaway.errors import UserError
+from rollaway.model import Covariance, DrumModel
+from rollaway.model_file import load_model, model_to_toml, save_model
+
+T = np.linspace(0, 3600, 13)
+
+
+def creep_model():
+    m = DrumModel("paper", ["lining_creep"], {"lining_creep.relaxed_fraction": 0.15,
+                                              "lining_creep.relaxation_time_s": 900.0}).replace_params(mu_drum=0.38)
+    m.covariance = Covariance(("mu_drum", "lining_creep.relaxed_fraction"), np.array([[1e-4, 2e-6], [2e-6, 9e-6]]))
+    m.provenance = {"data_file": "bench.csv", "rows": 104, "rmse_torque_Nm": 8.1}
+    return m
+
+
+def test_round_trip_keeps_values_covariance_provenance_and_torque(tmp_path):
+    m = creep_model()
+    path = save_model(m, tmp_path / "sub" / "m.toml", comment="test")
+    back = load_model(path)
+    assert back.values == m.values and back.params == m.params.__class__(**m.params.as_dict(), name="m")
+    np.testing.assert_array_equal(back.covariance.matrix, m.covariance.matrix)
+    assert back.covariance.names == m.covariance.names and back.provenance == m.provenance
+    assert np.array_equal(back.evaluate(T, 300.0).torque_Nm, m.evaluate(T, 300.0).torque_Nm)
+    assert model_to_toml(back) == model_to_toml(m)   # stable: writing it again gives the same file
+
+
+@pytest.mark.parametrize("text, needle", [
+    ('extends = "paper"\n[effects.lining_crep]\nrelaxed_fraction = 0.1\n', "did you mean 'lining_creep'"),
+    ('extends = "paper"\n[effects.lining_creep]\nrelaxed = 0.1\n', "unknown key 'effects.lining_creep.relaxed'"),
+    ('extends = "paper"\n[effects.lining_creep]\nrelaxed_fraction = 5\n', "outside [0, 0.6]"),
+    ('extends = "paper"\n[effects.lining_creep]\nrelaxed_fraction = "a"\n', "must be a finite number"),
+    ('extends = "paper"\n[effect.lining_creep]\nrelaxed_fraction = 0.1\n', "unexpected table [effect]"),
+    ('extends = "paper"\n[covariance]\nnames = ["mu_drum"]\nmatrix = [[1, 2]]\n', "1×1 list of rows"),
+    ('extends = "paper"\n[covariance]\nnames = ["mu_drum", "h"]\nmatrix = [[1, 0], [0, 1]]\n', "names 'h'"),
+    ('extends = "paper"\n[covariance]\nnames = ["mu_drum", "heat_transfer_W_m2K"]\nmatrix = [[1, 2], [0, 1]]\n',
+     "not symmetric"),
+    ('extends = "paper"\n[covariance]\nnames = ["mu_drum", "heat_transfer_W_m2K"]\nmatrix = [[1, 2], [2, 1]]\n',
+     "not positive semi-definite"),
+    ('extends = "paper"\n[covariance]\nnames = ["mu_drum"]\nmatrix = [[1]]\nscale = 2\n', "covariance.scale"),
+    ('extends = "paper"\nmu_drum = 0.4\n[provenance]\nrows = [1, 2]\n', "provenance.rows"),
+    ('extends = "paper"\n[effects.x]\nplugin = "nowhere.py"\n', "effects.x.plugin"),
+])
+def test_bad_model_files_are_one_line_errors_naming_file_and_key(tmp_path, run_cli, text, needle):
+    path = tmp_path / "bad.toml"
+    path.write_text(text, encoding="utf-8")
+    with pytest.raises(UserError, match=None) as exc:
+        load_model(path)
+    assert needle in str(exc.value) and str(path) in str(exc.value)
+    code, _, err = run_cli("hold", "--grade-pct", 20, "--hand-force-N", 300, "--params", path)
+    assert code == 2 and needle in err and len(err.strip().splitlines()) == 1
+
+
+@pytest.fixture
+def model_file(tmp_path):
+    return save_model(creep_model(), tmp_path / "creep.toml")
+
+
+def test_every_command_accepts_a_model_file(run_cli, model_file, tmp_path):
+    code, out, _ = run_cli("brake", "--hand-force-N", 300, "--params", model_file, "--format", "json")
+    rows = json.loads(out)
+    ref = creep_model().evaluate(np.array([r["time_s"] for r in rows]), 300.0).torque_Nm
+    assert code == 0 and np.allclose([r["torque_Nm"] for r in rows], ref, rtol=1e-12)
+    code, out, _ = run_cli("hold", "--grade-pct", 20, "--hand-force-N", 300, "--params", model_file, "--format", "json")
+    assert code in (0, 1) and json.loads(out)["effects"] == ["lining_creep"]
+    code, out, _ = run_cli("check", "--analytic", "--params", model_file, "--format", "json")
+    assert code in (0, 1) and len(json.loads(out)) == 4
+    code, out, _ = run_cli("params", model_file, "--format", "json")
+    assert code in (0, None) and any(r["name"] == "lining_creep.relaxed_fraction" for r in json.loads(out))
+    scen = tmp_path / "s.toml"
+    scen.write_text(f'name = "s"\ngrade_pct = 20\ndirection = "uphill"\noccupants = 5\nhand_force_N = 400\n'
+                    f'duration_s = 60\nparams = "{model_file.name}"\n', encoding="utf-8")
+    code, out, _ = run_cli("simulate", scen, "--format", "json")
+    assert code == 0 and json.loads(out)["outcome"] == "held"
+    code, out, _ = run_cli("check", scen, "--params", model_file, "--format", "json")
+    assert code == 0
+    code, _, _ = run_cli("paper", "--params", model_file, "--out", tmp_path / "figs")
+    assert code in (0, None) and len(list((tmp_path / "figs").glob("*.png"))) >= 6
