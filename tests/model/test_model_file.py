@@ -81,3 +81,18 @@ def test_every_command_accepts_a_model_file(run_cli, model_file, tmp_path):
     assert code == 0
     code, _, _ = run_cli("paper", "--params", model_file, "--out", tmp_path / "figs")
     assert code in (0, None) and len(list((tmp_path / "figs").glob("*.png"))) >= 6
+
+
+def test_chart_draws_both_models_and_refuses_bad_input(run_cli, model_file, tmp_path):
+    code, out, _ = run_cli("chart", "--params", "paper", "--params", model_file, "--out", tmp_path / "c.png")
+    assert code in (0, None) and (tmp_path / "c.png").stat().st_size > 10_000
+    code, _, err = run_cli("chart", "--occupants", 9, "--out", tmp_path / "d.png")
+    assert code == 2 and "occupants" in err
+
+
+def test_least_force_curves_of_a_model_with_clamp_loss_lie_above_the_paper_model(model_file):
+    from rollaway.figures.design import least_force_curves
+    curves = least_force_curves({"paper": DrumModel("paper"), "creep": load_model(model_file)}, occupants=5,
+                                duration_s=3600.0, initial_temp_C=200.0)
+    ok = np.isfinite(curves[("paper", "uphill")])
+    assert np.all(curves[("creep", "uphill")][ok] > curves[("paper", "uphill")][ok])

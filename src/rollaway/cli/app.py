@@ -25,6 +25,7 @@ COMMANDS = {
     "diagnose": "Which physical effect is the paper's model missing?",
     "fit": "Error ladder: refit with effects added and watch the error fall.",
     "synth": "Write synthetic bench data from the model plus hidden effects.",
+    "chart": "Design chart: least hand force against grade for drum models.",
 }
 
 
