@@ -5,6 +5,8 @@ from typing import List, Optional
 
 import typer
 
+from rollaway.cli import options as opt
+
 from rollaway.cli.identify_common import FORMAT_HELP, load_data, load_plugins, prepare_outputs, write_outputs
 
 
@@ -15,9 +17,7 @@ def diagnose(
     json_out: Optional[str] = typer.Option(None, "--json", metavar="FILE", help="write the diagnosis as JSON here"),
     report: Optional[str] = typer.Option(None, "--report", metavar="FILE", help="write a self-contained HTML report here"),
     fmt: str = typer.Option("text", "--format", metavar="FORMAT", help=FORMAT_HELP),
-    save_model: Optional[str] = typer.Option(None, "--save-model", metavar="FILE",
-                                             help="write the calibrated model (effects, fitted values, covariance, "
-                                                  "provenance) as TOML for --params of every command"),
+    save_model: Optional[str] = opt.SAVE_MODEL,
 ) -> None:
     """Calibrate μ_d and h, fit every catalogue effect jointly, rank by BIC and leave-one-test-out
     cross-validation, and say which effect is missing (or 'none') with the evidence."""

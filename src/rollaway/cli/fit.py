@@ -5,6 +5,8 @@ from typing import List, Optional
 
 import typer
 
+from rollaway.cli import options as opt
+
 from rollaway.cli.identify_common import FORMAT_HELP, load_data, load_plugins, prepare_outputs, parse_effects, write_outputs
 
 
@@ -18,9 +20,7 @@ def fit(
     report: Optional[str] = typer.Option(None, "--report", metavar="FILE", help="write a self-contained HTML report here"),
     json_out: Optional[str] = typer.Option(None, "--json", metavar="FILE", help="write the ladder and parameters as JSON here"),
     fmt: str = typer.Option("text", "--format", metavar="FORMAT", help=FORMAT_HELP),
-    save_model: Optional[str] = typer.Option(None, "--save-model", metavar="FILE",
-                                             help="write the calibrated model (effects, fitted values, covariance, "
-                                                  "provenance) as TOML for --params of every command"),
+    save_model: Optional[str] = opt.SAVE_MODEL,
 ) -> None:
     """Error ladder: paper defaults → calibrated baseline → + each effect (each rung calibrated), with the
     fitted parameters, 95 % intervals and bound warnings."""

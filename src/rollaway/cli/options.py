@@ -14,3 +14,7 @@ UNCERTAINTY: Optional[int] = typer.Option(
     help="draw N parameter vectors from the model file's covariance: roll-away probability")
 SEED = typer.Option(0, "--seed", metavar="N", help="random seed of the --uncertainty draws")
 FORMAT = typer.Option("table", "--format", metavar="FORMAT", help="csv | json | table")
+SAVE_MODEL: Optional[str] = typer.Option(
+    None, "--save-model", metavar="FILE",
+    help="write the calibrated model (effects, fitted values, covariance, provenance) as TOML for --params of "
+         "every command")
