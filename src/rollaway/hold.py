@@ -1,4 +1,4 @@
-"""Analytic hold check: will the parked car stay put? (MODEL.md item 9)
+"""Analytic hold check: will the parked car stay put? (docs/model.md, the hold check)
 
 Two conditions, both from a static balance:
 
@@ -284,6 +284,12 @@ class HoldVerdict:
     reason: str
     outcome: str = "held"                      # one of OUTCOMES
     least_hand_force_N: float | None = None    # None where no hand force can hold (tyres, self-locking, μ_d = 0)
+
+    def _repr_html_(self) -> str:  # notebooks
+        from rollaway.display import result_html
+        head = "HOLDS" if self.holds else f"ROLLS AWAY ({self.reason})" if self.outcome != "self_locking" \
+            else f"SELF-LOCKING: {self.reason}"
+        return result_html(head, {k: v for k, v in self.as_dict().items() if k not in ("holds", "reason")}, self.holds)
 
     def as_dict(self) -> dict:
         slip = None if not np.isfinite(self.time_to_slip_s) else float(self.time_to_slip_s)

@@ -131,6 +131,13 @@ class DrumModel:
         active = [e.name for e, _ in self.active()]
         return f"DrumModel({self.params.name!r}, effects={active})"
 
+    def _repr_html_(self) -> str:  # notebooks
+        from rollaway.display import result_html
+        rows = {"μ_d": self.params.mu_drum, "h [W/(m² K)]": self.params.heat_transfer_W_m2K, **self.values}
+        if self.covariance is not None:
+            rows.update({f"σ {k}": v for k, v in self.covariance.stderr.items()})
+        return result_html(f"drum model {self.name}", rows)
+
     def neutral_values(self) -> dict[str, float]:
         return {f"{e.name}.{p.name}": p.neutral for e in self.effects for p in e.parameters}
 

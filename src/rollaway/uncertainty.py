@@ -67,6 +67,13 @@ class Risk:
                 "brake_margin_percentiles": self.brake_margin_percentiles,
                 "slip_time_percentiles_s": self.slip_time_percentiles_s, "tyre_margin": self.tyre_margin}
 
+    def _repr_html_(self) -> str:  # notebooks
+        from rollaway.display import result_html
+        rows = {"draws": self.draws, **{f"least margin {k}": v for k, v in self.least_margin_percentiles.items()},
+                **{f"slip time {k} [s]": v for k, v in self.slip_time_percentiles_s.items()}}
+        return result_html(f"roll-away probability {self.rollaway_probability:.3f}", rows,
+                           self.rollaway_probability < 0.05)
+
     def draw_at_percentile(self, q: float) -> dict[str, float]:
         """The drawn values whose least margin is closest to its *q*-th percentile."""
         if not 0.0 <= q <= 100.0:

@@ -81,3 +81,12 @@ def test_cli_hold_reports_the_probability(run_cli, tmp_path):
     assert code == 1 and doc["uncertainty"]["rollaway_probability"] == 1.0 and doc["uncertainty"]["draws"] == 300
     code, _, err = run_cli("hold", "--grade-pct", 30, "--hand-force-N", 200, "--uncertainty", 300)
     assert code == 2 and "covariance" in err
+
+
+def test_results_show_in_notebooks():
+    v = hold.analytic_verdict(DrumModel("paper"), hand_force_N=120, duration_s=600, **{k: CASE[k] for k in (
+        "grade_pct", "direction", "occupants")})
+    assert "ROLLS AWAY" in v._repr_html_() and "<table>" in v._repr_html_()
+    r = rollaway_risk(creep(0.15, 0.01), hand_force_N=200, draws=50, **CASE)
+    assert "roll-away probability 1.000" in r._repr_html_()
+    assert "lining_creep.relaxed_fraction" in creep(0.15, 0.01)._repr_html_()
