@@ -9,12 +9,13 @@ import typer
 from rollaway.cli.brake import time_grid_s
 from rollaway.cli import options as opt
 from rollaway.cli.output import FORMATS, write_table
-from rollaway.errors import check_choice
+from rollaway.errors import UserError, check_choice
 from rollaway.hold import (analytic_verdict, effective_slope, hold_margin, minimum_hand_force_N, required_torque,
                            validate_grade, validate_hand_force, validate_occupants)
 from rollaway.brake import drum_brake
 from rollaway.parameters import load_parameters
 from rollaway.physics.drum import DIRECTIONS
+from rollaway.scenario import MAX_DURATION_S
 
 
 def hold(
@@ -41,7 +42,9 @@ def hold(
     validate_occupants(occupants)
     p = load_parameters(params).with_overrides([
         ("mu_drum", mu, "--mu"), ("initial_drum_temp_C", t0_C, "--t0-C"), ("tyre_road_mu", tyre_mu, "--tyre-mu")])
-    t = time_grid_s(duration_s, dt_s)
+    if not (np.isfinite(duration_s) and 0 < duration_s <= MAX_DURATION_S):
+        raise UserError(f"--duration-s {duration_s:g} must be in (0, {MAX_DURATION_S:.0f}] seconds, e.g. 3600")
+    t = time_grid_s(duration_s, dt_s, "--duration-s")
     margin = hold_margin(p, t, hand_force_N, grade_pct, direction, occupants)
     s = drum_brake(p, time_s=t, hand_force_N=hand_force_N, direction=effective_slope(grade_pct, direction)[1])
     t_req = float(required_torque(p, grade_pct, occupants))
