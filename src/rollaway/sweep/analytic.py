@@ -24,6 +24,7 @@ from rollaway.hold import (hold_margin, invalid_grade, invalid_hand_force, inval
 from rollaway.parameters import SPEC_BY_NAME
 from rollaway.physics.drum import DIRECTIONS
 from rollaway.scenario import MAX_DURATION_S, Scenario
+from rollaway.sweep.columns import label_codes, label_column
 
 OUTCOMES = ("held", "brake_slip", "tyre_skid")
 
@@ -81,11 +82,15 @@ def in_band(brake_margin, tyre_margin, band) -> np.ndarray:
 
 def analytic_pass(base: Scenario, points: pd.DataFrame, band) -> pd.DataFrame:
     """Analytic margins and verdicts of every point (a copy of *points* with result columns)."""
-    out = points.copy()
+    out = points.copy(deep=False)          # the input columns are shared, not copied
     ok = valid_mask(points)
-    v = points[ok]
+    all_ok = bool(ok.all())
+    v = points if all_ok else points[ok]
     p = base.params
-    g, d = v["grade_pct"].to_numpy(float), v["direction"].to_numpy(str)
+    dir_labels: list[str] = []
+    g = v["grade_pct"].to_numpy(float)
+    d_codes = label_codes(v["direction"], dir_labels)
+    d = np.asarray(dir_labels, dtype=str)[d_codes]        # a numpy string array without a Python str per row
     n, f = v["occupants"].to_numpy(float), v["hand_force_N"].to_numpy(float)
     mu, t0 = v["mu_drum"].to_numpy(float), v["initial_drum_temp_C"].to_numpy(float)
     mu_r, dur = v["tyre_road_mu"].to_numpy(float), v["duration_s"].to_numpy(float)
@@ -101,6 +106,9 @@ def analytic_pass(base: Scenario, points: pd.DataFrame, band) -> pd.DataFrame:
     t_roll = np.where(outcome == "held", np.nan, np.where(outcome == "tyre_skid", 0.0, t_slip))
 
     def put(name, values, fill, dtype=None):
+        if all_ok:
+            out[name] = np.asarray(values, dtype=dtype)
+            return
         col = np.full(len(points), fill, dtype=dtype or np.asarray(values).dtype)
         col[ok] = values
         out[name] = col
@@ -110,12 +118,21 @@ def analytic_pass(base: Scenario, points: pd.DataFrame, band) -> pd.DataFrame:
     put("margin", np.minimum(brake, tyre), np.nan, float)
     put("analytic_time_to_slip_s", t_slip, np.nan, float)
     put("min_hand_force_N", f_min, np.nan, float)
-    put("paper_verdict", np.where(brake >= 1.0, "hold", "roll"), "", object)
-    put("analytic_outcome", outcome, "", object)
+    def put_label(name, codes, labels):      # code 0 ("") for the invalid points
+        col = np.zeros(len(points), dtype=np.int32)
+        col[ok] = codes
+        out[name] = label_column(col, labels)
+
+    put_label("paper_verdict", np.where(brake >= 1.0, 1, 2), ("", "hold", "roll"))
+    put_label("analytic_outcome", np.where(outcome == "held", 1, np.where(outcome == "tyre_skid", 3, 2)),
+              ("",) + OUTCOMES)
     put("analytic_rollaway_time_s", t_roll, np.nan, float)
     put("in_band", in_band(brake, tyre, band), False, bool)
-    errors = np.full(len(points), "", dtype=object)
-    for i in np.flatnonzero(~ok):
-        errors[i] = invalid_message(base, points.iloc[i])
-    out["error"] = errors
+    bad = np.flatnonzero(~ok)
+    messages = [invalid_message(base, points.iloc[i]) for i in bad]
+    index = {m: i + 1 for i, m in enumerate(dict.fromkeys(messages))}
+    labels = [""] + list(index)
+    codes = np.zeros(len(points), dtype=np.int32)
+    codes[bad] = [index[m] for m in messages]
+    out["error"] = label_column(codes, labels)
     return out

@@ -77,6 +77,13 @@ def _slice(table, ref, free, direction):
     return table[mask]
 
 
+MAX_MARKERS = 4000   # markers drawn per kind and panel; more are evenly thinned (the contours show the rest)
+
+
+def _thin(rows: pd.DataFrame) -> pd.DataFrame:
+    return rows.iloc[::-(-len(rows) // MAX_MARKERS)] if len(rows) > MAX_MARKERS else rows
+
+
 def _map(table, spec, y_axis, ys, path) -> Path:
     ref = reference_values(table, spec)
     xs = _grade_axis(table)
@@ -92,14 +99,14 @@ def _map(table, spec, y_axis, ys, path) -> Path:
         b = np.clip(np.nan_to_num(brake, nan=0.0, posinf=10.0), 0, 10)
         ax.contour(xs, ys, b, levels=[1.0], colors="navy", linewidths=1.2, linestyles="--")
         pts = _slice(table, ref, ("grade_pct", y_axis), d)
-        plain = pts[~pts["simulated"]]
+        plain = _thin(pts[~pts["simulated"]])
         ax.plot(plain["grade_pct"], plain[y_axis], ".", color="0.3", ms=3, label="analytic only")
         for outcome, (mk, col, lab) in MARKERS.items():
             s = pts[pts["simulated"] & (pts["sim_outcome"] == outcome)]
             if len(s):
                 ax.scatter(s["grade_pct"], s[y_axis], marker=mk, c=col, s=40, edgecolors="k", linewidths=0.5,
                            label=lab, zorder=3)
-        bad = pts[pts["agree"] == False]  # noqa: E712
+        bad = _thin(pts[pts["agree"] == False])  # noqa: E712
         if len(bad):
             ax.scatter(bad["grade_pct"], bad[y_axis], marker="o", facecolors="none", edgecolors="magenta", s=110,
                        linewidths=1.3, label="paper's check disagrees", zorder=4)

@@ -16,6 +16,7 @@ from __future__ import annotations
 import json
 import math
 import os
+import uuid
 from pathlib import Path
 
 import pandas as pd
@@ -97,18 +98,43 @@ def drop_records(folder: str | Path, point_ids: set[str]) -> None:
         except json.JSONDecodeError:
             continue
         keep.append(line + "\n")
-    tmp = path.with_suffix(".tmp")
+    tmp = _temporary(path)
     tmp.write_text("".join(keep), encoding="utf-8")
     os.replace(tmp, path)
 
 
+TABLE_CHUNK_ROWS = 200_000
+
+
+def _temporary(path: Path) -> Path:
+    """A temporary name next to *path*, unique per process and call (never shared by two writers)."""
+    return path.with_name(f".{path.name}.{os.getpid()}.{uuid.uuid4().hex[:8]}.tmp")
+
+
 def write_table(df: pd.DataFrame, folder: str | Path, stem: str = "results") -> tuple[Path, Path]:
-    """Write *df* as ``stem.parquet`` and ``stem.csv`` atomically; return both paths."""
+    """Write *df* as ``stem.parquet`` and ``stem.csv`` atomically; return both paths.
+
+    Written in slices of :data:`TABLE_CHUNK_ROWS` rows (one Parquet row group each), so the
+    memory for a 2 000 000-row table stays a fraction of the table itself.
+    """
+    import pyarrow as pa
+    import pyarrow.csv as pa_csv
+    import pyarrow.parquet as pq
+
     folder = Path(folder)
     paths = folder / f"{stem}.parquet", folder / f"{stem}.csv"
-    tmp_pq, tmp_csv = (p.with_name(p.name + ".tmp") for p in paths)
-    df.to_parquet(tmp_pq, index=False)
-    df.to_csv(tmp_csv, index=False)
-    os.replace(tmp_pq, paths[0])
-    os.replace(tmp_csv, paths[1])
+    tmp_pq, tmp_csv = (_temporary(p) for p in paths)
+    try:
+        schema = pa.Schema.from_pandas(df.iloc[:TABLE_CHUNK_ROWS], preserve_index=False)
+        with pq.ParquetWriter(tmp_pq, schema) as pw, \
+                pa_csv.CSVWriter(tmp_csv, schema, write_options=pa_csv.WriteOptions(quoting_style="needed")) as cw:
+            for i in range(0, max(len(df), 1), TABLE_CHUNK_ROWS):
+                chunk = pa.Table.from_pandas(df.iloc[i:i + TABLE_CHUNK_ROWS], schema=schema, preserve_index=False)
+                pw.write_table(chunk)
+                cw.write_table(chunk)
+        os.replace(tmp_pq, paths[0])
+        os.replace(tmp_csv, paths[1])
+    finally:
+        for t in (tmp_pq, tmp_csv):
+            t.unlink(missing_ok=True)
     return paths
