@@ -80,13 +80,18 @@ def in_band(brake_margin, tyre_margin, band) -> np.ndarray:
     return ((b >= lo) & (b <= hi)) | ((t >= lo) & (t <= hi))
 
 
-def analytic_pass(base: Scenario, points: pd.DataFrame, band) -> pd.DataFrame:
-    """Analytic margins and verdicts of every point (a copy of *points* with result columns)."""
-    out = points.copy(deep=False)          # the input columns are shared, not copied
-    ok = valid_mask(points)
-    all_ok = bool(ok.all())
-    v = points if all_ok else points[ok]
-    p = base.params
+CHUNK_POINTS = 250_000     # points per vectorised call: bounds the temporaries of a 2e6-point pass
+
+# result column -> (fill for invalid points, dtype); label columns hold codes into LABELS
+_RESULTS = {"brake_margin_min": (np.nan, float), "tyre_margin": (np.nan, float), "margin": (np.nan, float),
+            "analytic_time_to_slip_s": (np.nan, float), "min_hand_force_N": (np.nan, float),
+            "paper_verdict": (0, np.int32), "analytic_outcome": (0, np.int32),
+            "analytic_rollaway_time_s": (np.nan, float), "in_band": (False, bool)}
+LABELS = {"paper_verdict": ("", "hold", "roll"), "analytic_outcome": ("",) + OUTCOMES}
+
+
+def _margins(p, v: pd.DataFrame, band) -> dict[str, np.ndarray]:
+    """The analytic results of the valid points *v* (one vectorised call per quantity)."""
     dir_labels: list[str] = []
     g = v["grade_pct"].to_numpy(float)
     d_codes = label_codes(v["direction"], dir_labels)
@@ -104,35 +109,38 @@ def analytic_pass(base: Scenario, points: pd.DataFrame, band) -> pd.DataFrame:
     tyre_first = (tyre < 1.0) & (tyre <= m_start)
     outcome = np.where(np.minimum(brake, tyre) >= 1.0, "held", np.where(tyre_first, "tyre_skid", "brake_slip"))
     t_roll = np.where(outcome == "held", np.nan, np.where(outcome == "tyre_skid", 0.0, t_slip))
+    return {"brake_margin_min": brake, "tyre_margin": tyre, "margin": np.minimum(brake, tyre),
+            "analytic_time_to_slip_s": t_slip, "min_hand_force_N": f_min,
+            "paper_verdict": np.where(brake >= 1.0, 1, 2),
+            "analytic_outcome": np.where(outcome == "held", 1, np.where(outcome == "tyre_skid", 3, 2)),
+            "analytic_rollaway_time_s": t_roll, "in_band": in_band(brake, tyre, band)}
 
-    def put(name, values, fill, dtype=None):
-        if all_ok:
-            out[name] = np.asarray(values, dtype=dtype)
-            return
-        col = np.full(len(points), fill, dtype=dtype or np.asarray(values).dtype)
-        col[ok] = values
-        out[name] = col
 
-    put("brake_margin_min", brake, np.nan, float)
-    put("tyre_margin", tyre, np.nan, float)
-    put("margin", np.minimum(brake, tyre), np.nan, float)
-    put("analytic_time_to_slip_s", t_slip, np.nan, float)
-    put("min_hand_force_N", f_min, np.nan, float)
-    def put_label(name, codes, labels):      # code 0 ("") for the invalid points
-        col = np.zeros(len(points), dtype=np.int32)
-        col[ok] = codes
-        out[name] = label_column(col, labels)
+def analytic_pass(base: Scenario, points: pd.DataFrame, band) -> pd.DataFrame:
+    """Analytic margins and verdicts of every point (*points* with result columns; inputs shared, not copied).
 
-    put_label("paper_verdict", np.where(brake >= 1.0, 1, 2), ("", "hold", "roll"))
-    put_label("analytic_outcome", np.where(outcome == "held", 1, np.where(outcome == "tyre_skid", 3, 2)),
-              ("",) + OUTCOMES)
-    put("analytic_rollaway_time_s", t_roll, np.nan, float)
-    put("in_band", in_band(brake, tyre, band), False, bool)
+    The points go through :func:`_margins` in slices of :data:`CHUNK_POINTS`, so memory stays
+    bounded for the largest sweeps; invalid points get NaN results and their message in ``error``.
+    """
+    out = points.copy(deep=False)
+    ok = valid_mask(points)
+    cols = {name: np.full(len(points), fill, dtype=dtype) for name, (fill, dtype) in _RESULTS.items()}
+    for lo in range(0, len(points), CHUNK_POINTS):
+        sl = slice(lo, lo + CHUNK_POINTS)
+        chunk_ok = ok[sl]
+        chunk = points.iloc[sl]
+        if not chunk_ok.any():
+            continue
+        res = _margins(base.params, chunk if chunk_ok.all() else chunk[chunk_ok], band)
+        for name, values in res.items():
+            view = cols[name][sl]
+            view[chunk_ok] = values
+    for name, values in cols.items():
+        out[name] = label_column(values, LABELS[name]) if name in LABELS else values
     bad = np.flatnonzero(~ok)
     messages = [invalid_message(base, points.iloc[i]) for i in bad]
     index = {m: i + 1 for i, m in enumerate(dict.fromkeys(messages))}
-    labels = [""] + list(index)
     codes = np.zeros(len(points), dtype=np.int32)
     codes[bad] = [index[m] for m in messages]
-    out["error"] = label_column(codes, labels)
+    out["error"] = label_column(codes, [""] + list(index))
     return out

@@ -70,11 +70,13 @@ def _dense(spec, ref, x_axis, xs, y_axis, ys, direction) -> np.ndarray:
 
 
 def _slice(table, ref, free, direction):
-    mask = (table["direction"] == direction)
+    """The rows of the map's slice, with only the columns a map draws (small even for 2e6 points)."""
+    mask = (table["direction"] == direction).to_numpy(bool, copy=True)
     for a in AXES:
         if a not in free and a != "direction":
             mask &= np.isclose(table[a].to_numpy(float), float(ref[a]))
-    return table[mask]
+    cols = list(dict.fromkeys([*free, "simulated", "sim_outcome", "agree"]))
+    return table.loc[mask, cols]
 
 
 MAX_MARKERS = 4000   # markers drawn per kind and panel; more are evenly thinned (the contours show the rest)
@@ -141,7 +143,7 @@ def design_chart(table, spec, path) -> Path:
     p = spec.base.params
     fig, ax = plt.subplots(figsize=(8, 5.5))
     for d, cmap, style in (("downhill", plt.cm.Blues, "-"), ("uphill", plt.cm.Reds, "--")):
-        if d not in set(table["direction"]):
+        if d not in set(pd.unique(table["direction"])):
             continue
         for i, n in enumerate(loads):
             colour = cmap(0.45 + 0.55 * (i + 1) / len(loads))
@@ -174,7 +176,8 @@ def make_plots(table: pd.DataFrame, spec: SweepSpec, folder: str | Path) -> list
     """Write the two maps and the design chart into *folder*; return their paths."""
     folder = Path(folder)
     folder.mkdir(parents=True, exist_ok=True)
-    valid = table[table["error"] == ""]
+    ok = (table["error"] == "").to_numpy(bool)
+    valid = table if ok.all() else table[ok]           # no copy of a large table that is all valid
     if valid.empty:
         return []
     lo, hi = _span(valid, "hand_force_N", (0.0, 600.0))
