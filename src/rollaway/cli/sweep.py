@@ -40,6 +40,7 @@ def sweep(
     quiet: bool = typer.Option(False, "--quiet", help="no progress bar"),
     no_plots: bool = typer.Option(False, "--no-plots", help="skip the PNG maps and design chart"),
     retry_failed: bool = typer.Option(False, "--retry-failed", help="simulate again the points that failed before"),
+    fresh: bool = typer.Option(False, "--fresh", help="delete the results of an earlier sweep in --out and start over"),
 ) -> int:
     """Analytic margin of every point, MuJoCo near the hold/roll boundary; table + maps in the output folder.
 
@@ -60,7 +61,7 @@ def sweep(
         raise UserError(f"--out '{out_dir}' is a file; give a folder")
     log = (lambda msg: None) if quiet else (lambda msg: typer.echo(msg, err=True))
     res = run_sweep(spec, out_dir, workers=workers, dask_address=dask, simulate=simulate, progress=not quiet,
-                    plots=not no_plots, retry_failed=retry_failed, log=log)
+                    plots=not no_plots, retry_failed=retry_failed, fresh=fresh, log=log)
     if res.interrupted:
         done = int(res.table["simulated"].sum())
         typer.echo(f"interrupted: {res.n_run} simulations finished this run, {done} of {res.n_to_simulate} in "
