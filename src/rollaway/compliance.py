@@ -16,7 +16,7 @@ from pathlib import Path
 import typer
 
 from rollaway.cli.output import write_table
-from rollaway.errors import check_choice
+from rollaway.errors import UserError, check_choice
 from rollaway.parameters import BrakeParameters
 from rollaway.regulations import PRESETS, get_preset
 from rollaway.scenario import Scenario, load_scenario, preset_scenarios
@@ -29,7 +29,7 @@ DEFAULT_TARGETS = ("fmvss135", "unr13h")
 
 
 def is_scenario_file(target: str) -> bool:
-    return target.endswith(".toml") or Path(target).is_file()
+    return target.endswith(".toml") or Path(target).exists() or "/" in target or "\\" in target
 
 
 def gate_scenarios(targets, params: BrakeParameters | None = None) -> list[tuple[str, Scenario]]:
@@ -80,6 +80,8 @@ def gate_table(pairs: list[tuple[str, Scenario]]) -> dict[str, list]:
         if pid not in cache:
             cache[pid] = run_task(make_task(pid, scenario_to_dict(s), {}))
         rec = cache[pid]
+        if rec["error"].startswith("UserError: "):      # the scenario is bad input, not a failing brake
+            raise UserError(f"{s.source or target}: {rec['error'].removeprefix('UserError: ')}")
         row.update(outcome=rec.get("sim_outcome", ""), rollaway_time_s=rec.get("sim_rollaway_time_s") or float("nan"),
                    error=rec["error"])
         values = {"target": target, "scenario": s.name, "direction": s.direction, "grade_pct": s.grade_pct,

@@ -33,23 +33,35 @@ def check_choice(value: str, choices: Iterable[str], what: str) -> str:
     )
 
 
-def read_toml(path, what: str, example: str) -> dict:
-    """Read a TOML file as a user input: a missing file, bad syntax or bad encoding is a UserError.
+def read_toml(path, what: str, example: str, referenced_by: str = "") -> dict:
+    """Read a TOML file as a user input: a missing file, a folder, bad syntax or bad encoding is a UserError.
 
     *what* names the kind of file ("scenario file"), *example* where to look for a good one.
+    *referenced_by* ("sweep.toml, key 'base'") prefixes the message when another file named this one.
+    A UTF-8 byte-order mark is accepted (editors on Windows write one), like the CSV loader does.
     """
     import tomllib
     from pathlib import Path
 
     path = Path(path)
+    pre = f"{referenced_by}: " if referenced_by else ""
+    if path.is_dir():
+        raise UserError(f"{pre}{what} '{path}' is a folder, not a file; give the path of a .toml file ({example})")
     if not path.is_file():
-        raise UserError(f"{what} '{path}' does not exist; check the path ({example})")
+        raise UserError(f"{pre}{what} '{path}' does not exist; check the path ({example})")
     try:
-        return tomllib.loads(path.read_text(encoding="utf-8"))
+        text = path.read_bytes().decode("utf-8-sig")
+    except UnicodeDecodeError as exc:
+        raise UserError(f"{pre}{path}: not a UTF-8 text file (byte {exc.start}); save it as UTF-8 TOML") from None
+    except OSError as exc:
+        raise UserError(f"{pre}{path}: cannot be read ({exc.strerror or exc}); check its permissions") from None
+    try:
+        data = tomllib.loads(text)
     except tomllib.TOMLDecodeError as exc:
-        raise UserError(f"{path}: not valid TOML ({exc}); fix the syntax at that line") from None
-    except UnicodeDecodeError:
-        raise UserError(f"{path}: not a UTF-8 text file; save it as UTF-8 TOML") from None
+        raise UserError(f"{pre}{path}: not valid TOML ({exc}); fix the syntax at that line") from None
+    except RecursionError:
+        raise UserError(f"{pre}{path}: not valid TOML (nested too deeply); flatten the tables") from None
+    return data
 
 
 def ensure_parent_dir(path, flag: str):

@@ -30,6 +30,7 @@ from rollaway.physics import drum as drum_phys
 from rollaway.physics import vehicle
 
 MAX_OCCUPANTS = 5
+MAX_HAND_FORCE_N = 5000.0   # assumed: far above any hand (FMVSS 135 / UN R13-H use 400 N); same as the bench CSV
 
 
 def _reject_bad(values: np.ndarray, bad: np.ndarray, message: str) -> np.ndarray:
@@ -52,9 +53,9 @@ def invalid_occupants(occupants: ArrayLike) -> np.ndarray:
 
 
 def invalid_hand_force(hand_force_N: ArrayLike) -> np.ndarray:
-    """True where a hand force is negative or not finite."""
+    """True where a hand force is outside [0, MAX_HAND_FORCE_N] or not finite."""
     f = np.asarray(hand_force_N, float)
-    return ~np.isfinite(f) | (f < 0)
+    return ~np.isfinite(f) | (f < 0) | (f > MAX_HAND_FORCE_N)
 
 
 def validate_grade(grade_pct: ArrayLike) -> np.ndarray:
@@ -71,7 +72,8 @@ def validate_occupants(occupants: ArrayLike) -> np.ndarray:
 
 def validate_hand_force(hand_force_N: ArrayLike) -> np.ndarray:
     return _reject_bad(np.asarray(hand_force_N, float), invalid_hand_force(hand_force_N),
-                       "hand force {:g} N is negative or not finite; give the lever force in newtons, e.g. 400")
+                       "hand force {:g} N is negative, over %g N or not finite; give the lever force in newtons, "
+                       "e.g. 400" % MAX_HAND_FORCE_N)
 
 
 def _effective(grade_pct, direction):
@@ -93,7 +95,8 @@ def effective_slope(grade_pct: ArrayLike, direction="downhill"):
 
 
 def _direction_of(sign):
-    return np.where(np.asarray(sign) > 0, "downhill", "uphill")
+    up_down = np.array(["uphill", "downhill"])          # a take is ~10x faster than np.where on strings
+    return up_down[(np.asarray(sign) > 0).astype(np.intp)]
 
 
 Model = BrakeParameters | DrumModel

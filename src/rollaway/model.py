@@ -361,9 +361,9 @@ def _call_hook(effect: Effect, hook: str, state: ModelState, x, v: dict, scalar_
     """Call one effect hook as untrusted code: an exception, a wrong shape or a non-finite value is a UserError."""
     try:
         out = getattr(effect, hook)(state, x, v)
-    except UserError:
+    except (UserError, KeyboardInterrupt):
         raise
-    except Exception as exc:  # a plugin's bug must not become a traceback
+    except BaseException as exc:  # noqa: BLE001 - a plugin's bug (or its sys.exit) must not end the tool silently
         raise UserError(f"{_where(effect)}: hook '{hook}' raised {type(exc).__name__}: {exc}; fix the effect's "
                         f"code") from None
     try:

@@ -54,8 +54,9 @@ def model_from_mapping(data: dict, where: str = "model", base_dir: Path | None =
     tables = {k: data.pop(k) for k in TABLES if k in data}
     for key, value in data.items():
         if isinstance(value, dict):
-            raise UserError(f"{where}: unexpected table [{key}]{suggest(key, TABLES)}; a model file has top-level "
-                            f"'name = value' parameters and the tables [effects.NAME], [covariance], [provenance]")
+            raise UserError(f"{where}: key '{key}' is a table{suggest(key, TABLES)}; parameters are top-level "
+                            f"'name = value' lines, and a model file's only tables are [effects.NAME], [covariance] "
+                            f"and [provenance]")
     params = parameters_from_mapping(data, where=where)
     base = data.get("extends") if isinstance(data.get("extends"), str) else None
     effects, values, files = _effects(tables.get("effects", {}), where, base_dir)

@@ -24,13 +24,14 @@ file and the key.
 from __future__ import annotations
 
 import dataclasses
+import math
 from dataclasses import dataclass, field
 from pathlib import Path
 
 from rollaway.errors import UserError, check_choice, read_toml, suggest
-from rollaway.hold import MAX_OCCUPANTS
+from rollaway.hold import MAX_HAND_FORCE_N, MAX_OCCUPANTS, invalid_grade, invalid_hand_force
 from rollaway.model import DrumModel
-from rollaway.parameters import BrakeParameters, parameters_from_mapping
+from rollaway.parameters import BrakeParameters
 from rollaway.physics.drum import DIRECTIONS
 from rollaway.regulations import PRESETS
 
@@ -92,14 +93,15 @@ _KEYS = {
 
 
 def _validate(s: Scenario, where: str) -> None:
-    if not (-100.0 < s.grade_pct <= 100.0):
+    if invalid_grade(s.grade_pct):
         raise UserError(f"{where}: key 'grade_pct' = {s.grade_pct:g} is outside (−100, 100]; give percent, e.g. 20")
     check_choice(s.direction, DIRECTIONS, f"direction in {where} (key 'direction')")
     if not (0 <= s.occupants <= MAX_OCCUPANTS):
         raise UserError(f"{where}: key 'occupants' = {s.occupants} must be a whole number from 0 to {MAX_OCCUPANTS}")
-    if s.hand_force_N < 0:
-        raise UserError(f"{where}: key 'hand_force_N' = {s.hand_force_N:g} is negative; give the lever force in N")
-    if not (0 < s.duration_s <= MAX_DURATION_S):
+    if invalid_hand_force(s.hand_force_N):
+        raise UserError(f"{where}: key 'hand_force_N' = {s.hand_force_N:g} is outside [0, {MAX_HAND_FORCE_N:g}] N; "
+                        f"give the lever force in newtons, e.g. 400")
+    if not (0 < s.duration_s <= MAX_DURATION_S):      # also false for NaN
         raise UserError(f"{where}: key 'duration_s' = {s.duration_s:g} must be in (0, {MAX_DURATION_S:.0f}] seconds")
 
 
@@ -119,6 +121,8 @@ def scenario_from_mapping(data: dict, where: str = "scenario", base_dir: Path | 
         if key not in data:
             continue
         v = data[key]
+        if isinstance(v, float) and not math.isfinite(v):
+            raise UserError(f"{where}: key '{key}' = {v!r} is not a finite number; give a physical value")
         ok = (isinstance(v, (int, float)) and not isinstance(v, bool)) if typ is float else \
              (isinstance(v, int) and not isinstance(v, bool)) if typ is int else isinstance(v, typ)
         if not ok:
@@ -130,18 +134,16 @@ def scenario_from_mapping(data: dict, where: str = "scenario", base_dir: Path | 
     from rollaway.model_file import load_model
     try:
         model = load_model(src)
-    except UserError as exc:
-        if src is None or str(exc).startswith(str(src)):
-            raise UserError(f"{where}: key 'params' = {src!r}: {exc}") from None
-        raise
+    except UserError as exc:       # a mistake inside the referenced file also names this file and key
+        if src is None:
+            raise
+        raise UserError(f"{where}, key 'params': {exc}") from None
     params = model.params
-    overrides = dict(data.get("parameters", {}))
-    for key in ("initial_drum_temp_C", "mu_drum", "tyre_road_mu"):
-        if key in data:
-            overrides[key] = data[key]
+    overrides = [(k, v, f"{where} [parameters]") for k, v in data.get("parameters", {}).items()]
+    overrides += [(k, data[k], where) for k in ("initial_drum_temp_C", "mu_drum", "tyre_road_mu") if k in data]
     if overrides:
-        params = parameters_from_mapping({**params.as_dict(), **overrides}, where=where)
-        params = dataclasses.replace(params, name=model.params.name + "+overrides")
+        params = params.with_overrides(overrides)
+        params = dataclasses.replace(params, name=params.name + "+overrides")
     reg = data.get("regulation")
     if reg is not None:
         check_choice(reg, PRESETS, f"regulation in {where} (key 'regulation')")

@@ -43,3 +43,16 @@ def test_help_lists_commands(run_cli):
     code, out, _ = run_cli("--help")
     for c in ("brake", "check", "paper", "params"):
         assert c in out
+
+
+def test_check_on_an_invalid_scenario_is_an_input_error(run_cli, tmp_path):
+    bad = tmp_path / "selflock.toml"
+    bad.write_text('name = "x"\ngrade_pct = 20\ndirection = "uphill"\noccupants = 1\nhand_force_N = 400\n'
+                   'duration_s = 300\nmu_drum = 1.5\n')
+    code, out, err = run_cli("check", bad)
+    assert code == 2 and "FAIL" not in out and str(bad) in err and err.count("\n") == 1
+
+
+def test_check_on_a_folder_says_it_is_a_folder(run_cli, tmp_path):
+    code, _, err = run_cli("check", tmp_path)
+    assert code == 2 and "is a folder" in err

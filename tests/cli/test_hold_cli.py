@@ -42,3 +42,9 @@ def test_hold_self_locking_is_not_a_hold(run_cli):
 def test_hold_bad_input(run_cli, args, needle):
     code, _, err = run_cli("hold", *args)
     assert code == 2 and needle in err and len(err.strip().splitlines()) == 1
+
+
+@pytest.mark.parametrize("value", ["-5", "nan", "1e9"])
+def test_bad_duration_blames_duration_flag(run_cli, value):
+    code, _, err = run_cli("hold", "--grade-pct", "20", "--hand-force-N", "300", "--duration-s", value)
+    assert code == 2 and err.startswith("rollaway hold: error: --duration-s") and "--t-end-s" not in err

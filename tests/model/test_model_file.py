@@ -35,7 +35,7 @@ def test_round_trip_keeps_values_covariance_provenance_and_torque(tmp_path):
     ('extends = "paper"\n[effects.lining_creep]\nrelaxed = 0.1\n', "unknown key 'effects.lining_creep.relaxed'"),
     ('extends = "paper"\n[effects.lining_creep]\nrelaxed_fraction = 5\n', "outside [0, 0.6]"),
     ('extends = "paper"\n[effects.lining_creep]\nrelaxed_fraction = "a"\n', "must be a finite number"),
-    ('extends = "paper"\n[effect.lining_creep]\nrelaxed_fraction = 0.1\n', "unexpected table [effect]"),
+    ('extends = "paper"\n[effect.lining_creep]\nrelaxed_fraction = 0.1\n', "key 'effect' is a table"),
     ('extends = "paper"\n[covariance]\nnames = ["mu_drum"]\nmatrix = [[1, 2]]\n', "1×1 list of rows"),
     ('extends = "paper"\n[covariance]\nnames = ["mu_drum", "h"]\nmatrix = [[1, 0], [0, 1]]\n', "names 'h'"),
     ('extends = "paper"\n[covariance]\nnames = ["mu_drum", "heat_transfer_W_m2K"]\nmatrix = [[1, 2], [0, 1]]\n',

@@ -121,3 +121,22 @@ def test_range_endpoints_inclusive_step(tmp_path):
                                       'grade_pct = {start = 0, stop = 1, step = 0.1}\n'))
     g = np.sort(spec.points["grade_pct"].unique())
     assert len(g) == 11 and g[-1] == pytest.approx(1.0)
+
+
+def test_point_ids_are_stable_vectorised_and_ignore_the_sign_of_zero():
+    import subprocess
+    import sys
+    from rollaway.scenario import preset_scenarios
+    from rollaway.sweep.spec import grid_spec, point_ids
+    base = preset_scenarios("fmvss135")[0]
+    spec = grid_spec(base, {"grade_pct": [0.0, -0.0, 10.0, 20.0], "direction": ["uphill", "downhill"]})
+    assert len(spec.points) == 2 * 3                       # -0.0 and 0.0 are one point
+    ids = list(spec.points["point_id"])
+    assert len(set(ids)) == len(ids) and all(len(i) == 16 and int(i, 16) >= 0 for i in ids)
+    code = ("from rollaway.scenario import preset_scenarios; from rollaway.sweep.spec import grid_spec;"
+            "print(list(grid_spec(preset_scenarios('fmvss135')[0], {'grade_pct': [0.0, 10.0, 20.0],"
+            "'direction': ['uphill', 'downhill']}).points['point_id']))")
+    other = subprocess.run([sys.executable, "-c", code], capture_output=True, text=True, check=True).stdout
+    assert other.strip() == str(ids)                        # same ids in another process
+    changed = base.replace(mu_drum=0.41)
+    assert set(point_ids(changed, spec.points)).isdisjoint(ids)   # the base's parameters are part of the id

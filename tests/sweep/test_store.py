@@ -70,3 +70,17 @@ def test_vectorised_pass_equals_the_scalar_check():
 def test_band_selects_either_margin():
     b = in_band([0.5, 0.95, 1.2, 2.0, 2.0], [2.0, 2.0, 2.0, 1.1, 0.85], (0.9, 1.15))
     assert b.tolist() == [False, True, False, True, False]
+
+
+def test_concurrent_table_writes_use_their_own_temporary_files(tmp_path):
+    from concurrent.futures import ThreadPoolExecutor
+
+    import pandas as pd
+
+    from rollaway.sweep.store import write_table
+    frames = [pd.DataFrame({"a": [float(i)] * 1000, "b": ["x"] * 1000}) for i in range(8)]
+    with ThreadPoolExecutor(4) as pool:
+        list(pool.map(lambda df: write_table(df, tmp_path), frames))
+    assert sorted(p.name for p in tmp_path.iterdir()) == ["results.csv", "results.parquet"]   # no .tmp left
+    back = pd.read_parquet(tmp_path / "results.parquet")
+    assert len(back) == 1000 and back["a"].nunique() == 1

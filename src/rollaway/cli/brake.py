@@ -22,11 +22,13 @@ def load_cli_model(params, overrides=()):
 
 
 def time_grid_s(t_end_s: float, dt_s: float, flag: str = "--t-end-s") -> np.ndarray:
+    """Print times 0, dt, … t_end; *flag* names the option that gave t_end in an error."""
     if not np.isfinite(t_end_s) or t_end_s < 0:
         raise UserError(f"{flag} {t_end_s:g} must be ≥ 0 seconds, e.g. 3600 for one hour")
     if not np.isfinite(dt_s) or dt_s <= 0:
         raise UserError(f"--dt-s {dt_s:g} must be > 0 seconds, e.g. 600")
-    n = int(np.floor(t_end_s / dt_s + 1e-9))
+    rows = np.floor(t_end_s / dt_s + 1e-9)
+    n = int(rows) if np.isfinite(rows) else 10_000_001
     if n > 10_000_000:
         raise UserError(f"{flag}/--dt-s gives {n} rows; use a larger --dt-s")
     return np.arange(n + 1) * dt_s

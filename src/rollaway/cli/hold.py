@@ -16,6 +16,7 @@ from rollaway.hold import (analytic_verdict, effective_slope, hold_margin, requi
                            validate_hand_force, validate_occupants)
 from rollaway.jsonsafe import to_jsonable
 from rollaway.physics.drum import DIRECTIONS
+from rollaway.scenario import MAX_DURATION_S
 
 
 def hold(
@@ -46,8 +47,8 @@ def hold(
     validate_grade(grade_pct)
     validate_hand_force(hand_force_N)
     validate_occupants(occupants)
-    if not np.isfinite(duration_s) or duration_s <= 0:
-        raise UserError(f"--duration-s {duration_s:g} must be > 0 seconds, e.g. 3600 for one hour")
+    if not (np.isfinite(duration_s) and 0 < duration_s <= MAX_DURATION_S):
+        raise UserError(f"--duration-s {duration_s:g} must be in (0, {MAX_DURATION_S:.0f}] seconds, e.g. 3600")
     model = load_cli_model(params, [("mu_drum", mu, "--mu"), ("initial_drum_temp_C", t0_C, "--t0-C"),
                                     ("tyre_road_mu", tyre_mu, "--tyre-mu")])
     t = time_grid_s(duration_s, dt_s, "--duration-s")

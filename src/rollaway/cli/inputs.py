@@ -17,13 +17,13 @@ SCENARIO_KEYS = ("grade_pct", "hand_force_N", "direction", "occupants", "duratio
 
 def toml_kind(path) -> str | None:
     """'sweep', 'scenario' or None (not a readable TOML, or a kind not recognised here)."""
-    import tomllib
+    from rollaway.errors import read_toml
     p = Path(path)
     if p.suffix.lower() != ".toml" or not p.is_file():
         return None
     try:
-        data = tomllib.loads(p.read_text(encoding="utf-8"))
-    except (tomllib.TOMLDecodeError, UnicodeDecodeError, OSError):
+        data = read_toml(p, "TOML file", "")     # BOM, bad bytes, deep nesting: the loader's own errors later
+    except UserError:
         return None
     if any(k in data for k in SWEEP_KEYS):
         return "sweep"

@@ -54,6 +54,7 @@ def sweep(
     uncertainty: Optional[int] = typer.Option(None, "--uncertainty", metavar="N", help="add each point's roll-away probability "
                                               "from N draws of the model's covariance (slow: one risk per point)"),
     fmt: str = typer.Option("text", "--format", metavar="FORMAT", help="text | json (the summary on stdout)"),
+    fresh: bool = typer.Option(False, "--fresh", help="delete the results of an earlier sweep in --out and start over"),
 ) -> int:
     """Analytic margin of every point, MuJoCo near the hold/roll boundary; table + maps in the output folder.
 
@@ -84,7 +85,7 @@ def sweep(
         raise UserError(f"--out '{out_dir}' is a file; give a folder")
     log = (lambda msg: None) if quiet else (lambda msg: typer.echo(msg, err=True))
     res = run_sweep(spec, out_dir, workers=workers, dask_address=dask, simulate=simulate, progress=not quiet,
-                    plots=not no_plots, retry_failed=retry_failed, log=log, uncertainty=uncertainty)
+                    plots=not no_plots, retry_failed=retry_failed, fresh=fresh, log=log, uncertainty=uncertainty)
     if res.interrupted:
         done = int(res.table["simulated"].sum())
         typer.echo(f"interrupted: {res.n_run} simulations finished this run, {done} of {res.n_to_simulate} in "

@@ -118,8 +118,17 @@ def load_measurements(path: str | Path) -> Measurements:
         text = path.read_text(encoding="utf-8-sig")
     except UnicodeDecodeError:
         raise UserError(f"{path}, line 1: not a UTF-8 text file; save the measurements as UTF-8 CSV") from None
+    if "\x00" in text:
+        line = text[:text.index("\x00")].count("\n") + 1
+        raise UserError(f"{path}, line {line}: a NUL byte; this is not a text CSV file — export the data again")
     reader = csv.reader(text.splitlines())
-    numbered = [(i + 1, row) for i, row in enumerate(reader)]
+    numbered = []
+    try:
+        for row in reader:
+            numbered.append((reader.line_num, row))
+    except csv.Error as exc:
+        raise UserError(f"{path}, line {reader.line_num}: {exc}; a cell that long or broken quoting is not bench "
+                        f"data — check the quotes on this line") from None
     numbered = [(n, r) for n, r in numbered if any(c.strip() for c in r)]
     if not numbered:
         raise UserError(f"{path}, line 1: the file is empty; expected the header "

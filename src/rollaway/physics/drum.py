@@ -17,9 +17,11 @@ def direction_sign(direction) -> np.ndarray:
     d = np.asarray(direction)
     if d.ndim == 0:
         return np.asarray(1.0 if check_choice(str(d), DIRECTIONS, "direction") == "downhill" else -1.0)
-    for v in np.unique(d):
-        check_choice(str(v), DIRECTIONS, "direction")
-    return np.where(d == "downhill", 1.0, -1.0)
+    down = d == "downhill"
+    bad = ~(down | (d == "uphill"))          # two O(n) comparisons, no sort of the strings
+    if bad.any():
+        check_choice(str(d[bad].flat[0]), DIRECTIONS, "direction")
+    return np.where(down, 1.0, -1.0)
 
 
 def lining_displacement_m(hand_force_N: ArrayLike, slope_m_per_N: float = 3.89e-7,

@@ -54,7 +54,11 @@ _STATUS = {"held": ("HELD", (40, 150, 60)), "brake_slip": ("ROLLING AWAY: the br
 
 
 def check_render_path(path) -> Path:
-    """Validate an output path: known suffix; its folder is created (UserError if it cannot be)."""
+    """Validate an output path (known suffix; its folder is created) and the GL setting (UserError)."""
+    from rollaway.sim import INVALID_MUJOCO_GL
+    if INVALID_MUJOCO_GL is not None:
+        raise UserError(f"--render {path}: MUJOCO_GL={INVALID_MUJOCO_GL!r} is not a MuJoCo GL backend; "
+                        f"set MUJOCO_GL=egl or MUJOCO_GL=osmesa (or unset it)")
     p = Path(path)
     if p.suffix.lower() not in RENDER_SUFFIXES:
         raise UserError(f"--render {path}: unknown file type '{p.suffix or '(none)'}'; "

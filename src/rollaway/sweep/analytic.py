@@ -24,8 +24,9 @@ from rollaway.hold import (self_locking, hold_margin, invalid_grade, invalid_han
 from rollaway.parameters import SPEC_BY_NAME
 from rollaway.physics.drum import DIRECTIONS
 from rollaway.scenario import MAX_DURATION_S, Scenario
+from rollaway.sweep.columns import label_codes, label_column
 
-OUTCOMES = ("held", "brake_slip", "tyre_skid")
+OUTCOMES = ("held", "brake_slip", "tyre_skid", "self_locking")
 
 
 def valid_mask(df: pd.DataFrame) -> np.ndarray:
@@ -95,13 +96,22 @@ def with_rollaway_probability(table: pd.DataFrame, base: Scenario, draws: int, s
     return out
 
 
-def analytic_pass(base: Scenario, points: pd.DataFrame, band) -> pd.DataFrame:
-    """Analytic margins and verdicts of every point (a copy of *points* with result columns)."""
-    out = points.copy()
-    ok = valid_mask(points)
-    v = points[ok]
-    p = base.model       # the drum model: closed forms without effects, numeric with them
-    g, d = v["grade_pct"].to_numpy(float), v["direction"].to_numpy(str)
+CHUNK_POINTS = 250_000     # points per vectorised call: bounds the temporaries of a 2e6-point pass
+
+# result column -> (fill for invalid points, dtype); label columns hold codes into LABELS
+_RESULTS = {"brake_margin_min": (np.nan, float), "tyre_margin": (np.nan, float), "margin": (np.nan, float),
+            "analytic_time_to_slip_s": (np.nan, float), "min_hand_force_N": (np.nan, float),
+            "paper_verdict": (0, np.int32), "analytic_outcome": (0, np.int32),
+            "analytic_rollaway_time_s": (np.nan, float), "in_band": (False, bool)}
+LABELS = {"paper_verdict": ("", "hold", "roll", "self_locking"), "analytic_outcome": ("",) + OUTCOMES}
+
+
+def _margins(p, v: pd.DataFrame, band) -> dict[str, np.ndarray]:
+    """The analytic results of the valid points *v* (one vectorised call per quantity)."""
+    dir_labels: list[str] = []
+    g = v["grade_pct"].to_numpy(float)
+    d_codes = label_codes(v["direction"], dir_labels)
+    d = np.asarray(dir_labels, dtype=str)[d_codes]        # a numpy string array without a Python str per row
     n, f = v["occupants"].to_numpy(float), v["hand_force_N"].to_numpy(float)
     mu, t0 = v["mu_drum"].to_numpy(float), v["initial_drum_temp_C"].to_numpy(float)
     mu_r, dur = v["tyre_road_mu"].to_numpy(float), v["duration_s"].to_numpy(float)
@@ -118,23 +128,38 @@ def analytic_pass(base: Scenario, points: pd.DataFrame, band) -> pd.DataFrame:
     outcome = np.where(locked, "self_locking", outcome)
     f_min = np.where(locked | (tyre < 1.0), np.nan, f_min)   # no hand force holds where the tyres slide
     t_roll = np.where(outcome == "held", np.nan, np.where(outcome == "tyre_skid", 0.0, t_slip))
+    return {"brake_margin_min": brake, "tyre_margin": tyre, "margin": np.minimum(brake, tyre),
+            "analytic_time_to_slip_s": t_slip, "min_hand_force_N": f_min,
+            "paper_verdict": np.where(locked, 3, np.where(brake >= 1.0, 1, 2)),
+            "analytic_outcome": np.select([outcome == o for o in OUTCOMES], np.arange(1, len(OUTCOMES) + 1)),
+            "analytic_rollaway_time_s": t_roll, "in_band": in_band(brake, tyre, band) & ~locked}
 
-    def put(name, values, fill, dtype=None):
-        col = np.full(len(points), fill, dtype=dtype or np.asarray(values).dtype)
-        col[ok] = values
-        out[name] = col
 
-    put("brake_margin_min", brake, np.nan, float)
-    put("tyre_margin", tyre, np.nan, float)
-    put("margin", np.minimum(brake, tyre), np.nan, float)
-    put("analytic_time_to_slip_s", t_slip, np.nan, float)
-    put("min_hand_force_N", f_min, np.nan, float)
-    put("paper_verdict", np.where(locked, "self_locking", np.where(brake >= 1.0, "hold", "roll")), "", object)
-    put("analytic_outcome", outcome, "", object)
-    put("analytic_rollaway_time_s", t_roll, np.nan, float)
-    put("in_band", in_band(brake, tyre, band) & ~locked, False, bool)
-    errors = np.full(len(points), "", dtype=object)
-    for i in np.flatnonzero(~ok):
-        errors[i] = invalid_message(base, points.iloc[i])
-    out["error"] = errors
+def analytic_pass(base: Scenario, points: pd.DataFrame, band) -> pd.DataFrame:
+    """Analytic margins and verdicts of every point (*points* with result columns; inputs shared, not copied).
+
+    The points go through :func:`_margins` in slices of :data:`CHUNK_POINTS`, so memory stays
+    bounded for the largest sweeps; invalid points get NaN results and their message in ``error``.
+    """
+    out = points.copy(deep=False)
+    ok = valid_mask(points)
+    cols = {name: np.full(len(points), fill, dtype=dtype) for name, (fill, dtype) in _RESULTS.items()}
+    for lo in range(0, len(points), CHUNK_POINTS):
+        sl = slice(lo, lo + CHUNK_POINTS)
+        chunk_ok = ok[sl]
+        chunk = points.iloc[sl]
+        if not chunk_ok.any():
+            continue
+        res = _margins(base.model, chunk if chunk_ok.all() else chunk[chunk_ok], band)
+        for name, values in res.items():
+            view = cols[name][sl]
+            view[chunk_ok] = values
+    for name, values in cols.items():
+        out[name] = label_column(values, LABELS[name]) if name in LABELS else values
+    bad = np.flatnonzero(~ok)
+    messages = [invalid_message(base, points.iloc[i]) for i in bad]
+    index = {m: i + 1 for i, m in enumerate(dict.fromkeys(messages))}
+    codes = np.zeros(len(points), dtype=np.int32)
+    codes[bad] = [index[m] for m in messages]
+    out["error"] = label_column(codes, [""] + list(index))
     return out

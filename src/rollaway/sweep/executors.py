@@ -16,6 +16,7 @@ import os
 import signal
 import socket
 import sys
+import threading
 import time
 from collections.abc import Callable, Iterable, Iterator
 from concurrent.futures import FIRST_COMPLETED, Future, ProcessPoolExecutor, wait
@@ -83,9 +84,42 @@ def run_task(task: dict, simulate_fn: SimulateFn | None = None) -> dict:
     return rec
 
 
-def _ignore_sigint() -> None:
-    """Workers leave Ctrl-C to the parent, which cancels and consolidates."""
+WATCHDOG_PERIOD_S = 0.5
+_PR_SET_PDEATHSIG = 1
+
+
+def _parent_alive(pid: int) -> bool:
+    try:
+        os.kill(pid, 0)
+    except ProcessLookupError:
+        return False
+    except PermissionError:      # a process of another user took the pid: ours is gone
+        return False
+    return True
+
+
+def _watchdog(parent_pid: int) -> None:
+    while True:
+        time.sleep(WATCHDOG_PERIOD_S)
+        if os.getppid() == 1 or not _parent_alive(parent_pid):
+            os._exit(3)
+
+
+def _worker_init(parent_pid: int) -> None:
+    """Workers leave Ctrl-C to the parent, and exit within a second when the sweep process dies.
+
+    The sweep process is not the workers' parent under forkserver, so a thread polls it
+    (``kill(pid, 0)``); where the sweep is the parent, the kernel's parent-death signal
+    (``prctl(PR_SET_PDEATHSIG)``, Linux) ends the worker at once.
+    """
     signal.signal(signal.SIGINT, signal.SIG_IGN)
+    if os.getppid() == parent_pid and sys.platform.startswith("linux"):
+        try:
+            import ctypes
+            ctypes.CDLL(None, use_errno=True).prctl(_PR_SET_PDEATHSIG, signal.SIGKILL)
+        except (OSError, AttributeError):
+            pass
+    threading.Thread(target=_watchdog, args=(parent_pid,), daemon=True, name="rollaway-watchdog").start()
 
 
 class SerialExecutor:
@@ -129,7 +163,8 @@ class ProcessExecutor:
     """Local worker processes (one per core by default); tasks go out in a bounded window."""
 
     def __init__(self, workers: int, simulate_fn: SimulateFn | None = None):
-        self.pool = ProcessPoolExecutor(max_workers=workers, mp_context=_mp_context(), initializer=_ignore_sigint)
+        self.pool = ProcessPoolExecutor(max_workers=workers, mp_context=_mp_context(), initializer=_worker_init,
+                                        initargs=(os.getpid(),))
         self.fn = partial(run_task, simulate_fn=simulate_fn)
         self.window = 4 * workers
         self._pending: set[Future] = set()

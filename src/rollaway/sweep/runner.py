@@ -5,8 +5,10 @@
    ``all`` or ``none``.  Those already in the output folder's journal are skipped: a rerun
    continues an interrupted sweep.
 3. The rest go to an executor (local processes or Dask); each finished point is journalled
-   at once; the table is consolidated every ``CONSOLIDATE_EVERY_S``, at the end and on Ctrl-C
-   or SIGTERM.
+   at once; the table is written before the first simulation, consolidated every
+   ``CONSOLIDATE_EVERY_S``, at the end and on Ctrl-C or SIGTERM.
+
+The output folder is locked for the run and fingerprinted (:mod:`rollaway.sweep.folder`).
 """
 from __future__ import annotations
 
@@ -22,7 +24,8 @@ import pandas as pd
 
 from rollaway.sweep.analytic import analytic_pass, point_changes, with_rollaway_probability
 from rollaway.sweep.executors import make_executor, make_task, scenario_to_dict
-from rollaway.sweep.spec import SweepSpec
+from rollaway.sweep.folder import FolderLock, check_fingerprint, clear_outputs, fingerprint
+from rollaway.sweep.spec import SweepSpec, point_hashes
 from rollaway.sweep.store import Journal, drop_records, write_table
 from rollaway.sweep.table import build_table
 
@@ -113,12 +116,27 @@ def _write_manifest(spec: SweepSpec, out: Path, n_sim: int) -> None:
 
 def run_sweep(spec: SweepSpec, out_dir: str | Path, *, workers: int | None = None, dask_address: str | None = None,
               simulate: str | None = None, progress: bool = True, simulate_fn=None, plots: bool = True,
-              retry_failed: bool = False, log=None, uncertainty: int | None = None) -> SweepResult:
-    """Run *spec*, writing into *out_dir*; resumes from the journal already there."""
-    log = log or (lambda msg: None)
-    start = time.perf_counter()
+              retry_failed: bool = False, fresh: bool = False, log=None,
+              uncertainty: int | None = None) -> SweepResult:
+    """Run *spec*, writing into *out_dir*; resumes from the journal already there.
+
+    The folder is locked for the run (a second sweep into it is refused) and must hold this
+    spec's points or nothing (:mod:`rollaway.sweep.folder`); *fresh* deletes what it holds first.
+    """
     out = Path(out_dir)
     out.mkdir(parents=True, exist_ok=True)
+    with FolderLock(out):
+        if fresh:
+            clear_outputs(out)
+        check_fingerprint(out, fingerprint(point_hashes(spec.base, spec.points)), spec.source, len(spec.points))
+        return _run_locked(spec, out, workers=workers, dask_address=dask_address, simulate=simulate,
+                           progress=progress, simulate_fn=simulate_fn, plots=plots, retry_failed=retry_failed,
+                           log=log or (lambda msg: None), uncertainty=uncertainty)
+
+
+def _run_locked(spec: SweepSpec, out: Path, *, workers, dask_address, simulate, progress, simulate_fn, plots,
+                retry_failed, log, uncertainty=None) -> SweepResult:
+    start = time.perf_counter()
     t0 = time.perf_counter()
     analytic = analytic_pass(spec.base, spec.points, spec.band)
     if uncertainty:
@@ -129,6 +147,8 @@ def run_sweep(spec: SweepSpec, out_dir: str | Path, *, workers: int | None = Non
 
     journal = Journal(out)
     records = journal.load()
+    if journal.damaged:
+        log(f"{out / 'journal.jsonl'}: dropped {journal.damaged} damaged line(s); their points are simulated again")
     if retry_failed:
         failed = {pid for pid, r in records.items() if r.get("error")}
         drop_records(out, failed)
@@ -138,6 +158,8 @@ def run_sweep(spec: SweepSpec, out_dir: str | Path, *, workers: int | None = Non
     log(f"{len(analytic)} points (analytic pass {analytic_wall * 1000:.0f} ms); {len(to_sim)} to simulate"
         + (f", {n_resumed} already done (resuming)" if n_resumed else ""))
 
+    if len(todo):       # a table from the start: a run killed before the first consolidation still leaves one
+        write_table(build_table(analytic, records, analytic_wall), out)
     base = scenario_to_dict(spec.base)
     tasks = (make_task(r.point_id, base, point_changes(r._asdict())) for r in todo.itertuples(index=False))
     interrupted, n_run = False, 0

@@ -31,6 +31,7 @@ from pathlib import Path
 
 import numpy as np
 import pandas as pd
+import pyarrow as pa
 
 from rollaway.errors import UserError, check_choice, read_toml, suggest
 from rollaway.physics.drum import DIRECTIONS
@@ -105,6 +106,9 @@ def _range_values(r: dict, where: str) -> list[float]:
     if ("num" in r) == ("step" in r):
         raise UserError(f"{where}: give exactly one of 'num' (how many values) or 'step' (spacing)")
     start, stop = float(r["start"]), float(r["stop"])
+    if not math.isfinite(stop - start):
+        raise UserError(f"{where}: range from {start:g} to {stop:g} spans more than a float can hold; "
+                        f"give physical values (e.g. grade_pct from -50 to 50)")
     if "num" in r:
         num = r["num"]
         if not isinstance(num, int) or isinstance(num, bool) or num < 1:
@@ -115,11 +119,14 @@ def _range_values(r: dict, where: str) -> list[float]:
     step = r["step"]
     if not _is_number(step) or not step > 0 or not math.isfinite(step):
         raise UserError(f"{where}: range 'step' must be a number > 0, got {step!r}")
-    count = int(math.floor(abs(stop - start) / step + 1e-9)) + 1
-    if count > MAX_POINTS:
-        raise UserError(f"{where}: range gives {count} values (max {MAX_POINTS}); use a larger step")
+    count_f = abs(stop - start) / step + 1e-9          # inf for a denormal step: still refused below
+    if not count_f < MAX_POINTS:
+        raise UserError(f"{where}: range with step {step:g} gives "
+                        f"{'more than ' + str(MAX_POINTS) if not math.isfinite(count_f) else int(count_f) + 1} "
+                        f"values (max {MAX_POINTS}); use a larger step")
+    count = int(math.floor(count_f)) + 1
     sign = 1.0 if stop >= start else -1.0
-    return [float(start + sign * i * step) for i in range(count)]
+    return [float(v) for v in start + sign * np.arange(count) * step]
 
 
 def _check_value(axis: str, v, where: str) -> None:
@@ -148,9 +155,13 @@ def _base_scenario(data: dict, where: str, base_dir: Path) -> tuple[Scenario, li
         path = Path(data["base"])
         path = path if path.is_absolute() else base_dir / path
         if not path.is_file():
-            raise UserError(f"{where}: key 'base': scenario file '{path}' does not exist; "
+            raise UserError(f"{where}: key 'base': scenario file '{path}' "
+                            f"{'is a folder' if path.is_dir() else 'does not exist'}; "
                             f"give a path relative to the sweep file")
-        return load_scenario(path), None
+        try:
+            return load_scenario(path), None
+        except UserError as exc:
+            raise UserError(f"{where}, key 'base': {exc}") from None
     name = data["base_preset"]
     if not isinstance(name, str):
         raise UserError(f"{where}: key 'base_preset' must be a quoted preset name, got {name!r}")
@@ -179,8 +190,23 @@ def _base_values(base: Scenario) -> dict:
     return {a: getattr(base, a) for a in AXES}
 
 
+def _grid_frame(axes_values: list[list]) -> pd.DataFrame:
+    """Every combination of *axes_values* (one list per AXES entry, the last varying fastest)."""
+    total = math.prod(len(v) for v in axes_values)
+    cols, stride = {}, total
+    for a, vals in zip(AXES, axes_values):
+        stride //= len(vals)
+        k = (np.arange(total, dtype=np.int64) // stride) % len(vals)
+        if a == "direction":      # an Arrow string column built from codes: no Python string per row
+            arr = pa.DictionaryArray.from_arrays(pa.array(k.astype(np.int32)), pa.array([str(v) for v in vals]))
+            cols[a] = pd.array(arr.cast(pa.string()), dtype="str")
+        else:
+            cols[a] = np.asarray(vals, dtype=float)[k]
+    return pd.DataFrame(cols)
+
+
 def expand(base: Scenario, grid: dict[str, list] | None = None, points: list[dict] | None = None,
-           default_directions: list[str] | None = None) -> pd.DataFrame:
+           default_directions: list[str] | None = None, where: str = "sweep") -> pd.DataFrame:
     """Rows of AXES: the product of *grid* (unset axes from *base*) followed by the single *points*."""
     defaults = _base_values(base)
     frames = []
@@ -193,20 +219,23 @@ def expand(base: Scenario, grid: dict[str, list] | None = None, points: list[dic
                 axes_values.append(list(default_directions))
             else:
                 axes_values.append([defaults[a]])
-        total = math.prod(len(v) for v in axes_values)
+        total = math.prod(len(v) for v in axes_values) + len(points or ())
         if total > MAX_POINTS:
-            raise UserError(f"the grid has {total} points (max {MAX_POINTS}); use fewer values per axis")
-        idx = np.stack(np.meshgrid(*[np.arange(len(v)) for v in axes_values], indexing="ij"), -1).reshape(-1, len(AXES))
-        frames.append(pd.DataFrame({a: np.asarray(vals, dtype=object if a == "direction" else float)[idx[:, i]]
-                                    for i, (a, vals) in enumerate(zip(AXES, axes_values))}))
+            sizes = " × ".join(f"{a} {len(v)}" for a, v in zip(AXES, axes_values) if len(v) > 1)
+            raise UserError(f"{where} [grid]: the grid has {total} points ({sizes}; max {MAX_POINTS}); "
+                            f"use fewer values per axis or split the sweep")
+        frames.append(_grid_frame(axes_values))
     if points:
         frames.append(pd.DataFrame([{a: p.get(a, defaults[a]) for a in AXES} for p in points]))
-    df = pd.concat(frames, ignore_index=True)
+    df = pd.concat(frames, ignore_index=True) if len(frames) > 1 else frames[0]
     for a in NUMERIC_AXES:
         df[a] = df[a].astype(float)
     df["direction"] = df["direction"].astype(str)
-    df.insert(0, "point_id", point_ids(base, df))
-    df = df.drop_duplicates("point_id", keep="first").reset_index(drop=True)
+    h = point_hashes(base, df)
+    dup = pd.Series(h).duplicated(keep="first").to_numpy()
+    if dup.any():
+        df, h = df[~dup].reset_index(drop=True), h[~dup]
+    df.insert(0, "point_id", hex_ids(h))
     df.insert(0, "point_index", np.arange(len(df)))
     return df
 
@@ -219,15 +248,51 @@ def base_key(base: Scenario) -> str:
     return hashlib.sha1(payload.encode()).hexdigest()
 
 
-def point_ids(base: Scenario, df: pd.DataFrame) -> list[str]:
-    """A stable id per point: hash of the base's parameters and the point's AXES values."""
-    key = base_key(base)
-    cols = [df[a].tolist() for a in AXES]
-    out = []
-    for row in zip(*cols):
-        text = key + "|" + "|".join(v if isinstance(v, str) else repr(float(v)) for v in row)
-        out.append(hashlib.sha1(text.encode()).hexdigest()[:16])
-    return out
+_M1, _M2 = np.uint64(0xBF58476D1CE4E5B9), np.uint64(0x94D049BB133111EB)
+
+
+def _mix64(z: np.ndarray) -> np.ndarray:
+    """The splitmix64 finaliser (a bijection of uint64 that spreads every input bit), vectorised."""
+    with np.errstate(over="ignore"):
+        z = (z ^ (z >> np.uint64(30))) * _M1
+        z = (z ^ (z >> np.uint64(27))) * _M2
+    return z ^ (z >> np.uint64(31))
+
+
+def _sha64(text: str) -> int:
+    return int(hashlib.sha1(text.encode()).hexdigest()[:16], 16)
+
+
+def _column_bits(col: pd.Series) -> np.ndarray:
+    """One uint64 per row that identifies the value: a float's bits (−0 → 0, one NaN), a string's hash."""
+    if col.dtype.kind == "f":
+        v = col.to_numpy(float) + 0.0
+        v[np.isnan(v)] = np.nan
+        return v.view(np.uint64)
+    codes, uniques = pd.factorize(col, use_na_sentinel=False)
+    return np.array([_sha64(str(u)) for u in uniques], dtype=np.uint64)[codes]
+
+
+def point_hashes(base: Scenario, df: pd.DataFrame) -> np.ndarray:
+    """A stable 64-bit hash per point of the base's parameters and the point's AXES values (vectorised)."""
+    h = np.full(len(df), _sha64(base_key(base)), dtype=np.uint64)
+    for a in AXES:
+        h = _mix64(h ^ _column_bits(df[a]))
+    return h
+
+
+def hex_ids(h: np.ndarray):
+    """16 hex digits per hash, as a pandas string array built without a Python string per row."""
+    data = np.ascontiguousarray(h, dtype=">u8").tobytes().hex().encode("ascii")
+    offsets = (np.arange(len(h) + 1, dtype=np.int32) * 16)
+    arr = pa.StringArray.from_buffers(len(h), pa.py_buffer(offsets), pa.py_buffer(data))
+    return pd.array(arr, dtype="str")
+
+
+def point_ids(base: Scenario, df: pd.DataFrame):
+    """A stable id per point (16 hex digits): :func:`point_hashes` as text; the same values give the
+    same id in every run and process, so a rerun finds its points in the journal."""
+    return hex_ids(point_hashes(base, df))
 
 
 def spec_from_mapping(data: dict, where: str, base_dir: Path) -> SweepSpec:
@@ -250,7 +315,9 @@ def spec_from_mapping(data: dict, where: str, base_dir: Path) -> SweepSpec:
                 _check_value(a, v, f"{where} [[points]] #{i + 1} key '{a}'")
     if grid is None and pts is None:
         raise UserError(f"{where}: nothing to sweep; add a [grid] table or [[points]] blocks")
-    df = expand(base, grid, pts, preset_dirs)
+    if pts is not None and len(pts) > MAX_POINTS:
+        raise UserError(f"{where}: {len(pts)} [[points]] blocks (max {MAX_POINTS}); split the sweep")
+    df = expand(base, grid, pts, preset_dirs, where)
     return SweepSpec(source=where, base=base, points=df, simulate=mode, band=band, description=desc)
 
 
@@ -266,5 +333,5 @@ def grid_spec(base: Scenario, grid: dict[str, list], *, simulate: str = "band",
     """Build a spec in code (benchmarks, tests), validated like a file's [grid]."""
     _check_keys(grid, AXES, f"{source} grid")
     values = {a: _axis_values(a, v, f"{source} grid axis '{a}'") for a, v in grid.items()}
-    return SweepSpec(source=source, base=base, points=expand(base, values), band=band,
+    return SweepSpec(source=source, base=base, points=expand(base, values, where=source), band=band,
                      simulate=check_choice(simulate, SIMULATE_MODES, "simulate mode"))
