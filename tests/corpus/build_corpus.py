@@ -257,7 +257,6 @@ def plug(**kw):
         assert k in src, k
         src = src.replace(k, v)
     return src.replace("HOOK", hook)
-HOOKX = "hook guard in the model chain"
 add(E, "ok-effect.py", plug(), "accept", effect="humidity")
 add(E, "exit-0.py", "import sys\nsys.exit(0)\n", "error", ["exit-0.py", "sys.exit(0)"], effect="humidity")
 add(E, "exit-3.py", plug() + "\nimport sys\nsys.exit(3)\n", "error", ["exit-3.py", "sys.exit(3)"], effect="humidity")
