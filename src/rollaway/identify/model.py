@@ -1,7 +1,12 @@
 """The extended bench model: the paper's baseline plus effect hooks, over all samples at once.
 
 Free baseline parameters are ``mu_drum`` (μ_d) and ``heat_transfer_W_m2K`` (h); effect
-parameters are named ``"<effect>.<parameter>"``.  With no effects (or all effects neutral)
+parameters are named ``"<effect>.<parameter>"``.  Per-test quantities are separate additions:
+``"initial_temp_C"`` (each test's start temperature T_0, a nuisance parameter) and effect
+parameters declared ``per_test``; in a values dict they hold one value per test (an array in
+the order of ``data.tests``).  Without ``"initial_temp_C"`` the t = 0 readings are used.
+A logged ambient that varies within a test is integrated through eq. (10)'s ODE
+(:func:`rollaway.physics.cooling.drum_temperature_logged_ambient_C`).  With no effects (or all effects neutral)
 the computation calls exactly the baseline functions of :mod:`rollaway.brake` and
 :mod:`rollaway.physics` in the same order, so the result is bit-identical to
 :func:`rollaway.brake.drum_brake`.
@@ -20,6 +25,8 @@ from rollaway.physics import cooling, drum
 BASELINE_FREE = ("mu_drum", "heat_transfer_W_m2K")
 BASELINE_BOUNDS = {"mu_drum": (0.02, 1.0), "heat_transfer_W_m2K": (1.0, 400.0)}
 BASELINE_UNITS = {"mu_drum": "–", "heat_transfer_W_m2K": "W/(m² K)"}
+INITIAL_TEMP = "initial_temp_C"          # per-test nuisance: each test's T_0 [°C]
+INITIAL_TEMP_BOUNDS = (-60.0, 1000.0)
 
 
 @dataclass
@@ -44,7 +51,20 @@ class BenchModel:
 
     # -- parameters ------------------------------------------------------------------
     def parameter_names(self) -> list[str]:
-        return list(BASELINE_FREE) + [f"{e.name}.{p.name}" for e in self.effects for p in e.parameters]
+        """Global parameters (one value for all tests)."""
+        return list(BASELINE_FREE) + [f"{e.name}.{p.name}" for e in self.effects for p in e.parameters
+                                      if not p.per_test]
+
+    def per_test_parameters(self) -> list[str]:
+        """Parameters with one value per test: T_0 first, then per-test effect parameters."""
+        return [INITIAL_TEMP] + [f"{e.name}.{p.name}" for e in self.effects for p in e.parameters if p.per_test]
+
+    def initial_values(self) -> dict[str, float]:
+        """Starting point of a fit: the set's μ_d and h, each effect parameter's ``initial``."""
+        v = self.neutral_values()
+        for e in self.effects:
+            v.update({f"{e.name}.{p.name}": p.initial for p in e.parameters})
+        return v
 
     def neutral_values(self) -> dict[str, float]:
         v = {"mu_drum": self.params.mu_drum, "heat_transfer_W_m2K": self.params.heat_transfer_W_m2K}
@@ -53,6 +73,8 @@ class BenchModel:
         return v
 
     def bounds(self, name: str) -> tuple[float, float]:
+        if name == INITIAL_TEMP:
+            return INITIAL_TEMP_BOUNDS
         if name in BASELINE_BOUNDS:
             lo, hi = BASELINE_BOUNDS[name]
             if name == "mu_drum":   # never let the fit enter the self-locking region (eqs. 18–21)
@@ -64,6 +86,8 @@ class BenchModel:
         return spec.lower, spec.upper
 
     def unit(self, name: str) -> str:
+        if name == INITIAL_TEMP:
+            return "°C"
         if name in BASELINE_UNITS:
             return BASELINE_UNITS[name]
         eff, par = name.split(".", 1)
@@ -78,17 +102,20 @@ class BenchModel:
     def temperature_parameters(self) -> list[str]:
         """Parameters of the drum-temperature channel (h and temperature-changing effects)."""
         return ["heat_transfer_W_m2K"] + [f"{e.name}.{p.name}" for e in self.effects if e.touches_temperature()
-                                          for p in e.parameters]
+                                          for p in e.parameters if not p.per_test]
 
     def torque_parameters(self) -> list[str]:
         return ["mu_drum"] + [f"{e.name}.{p.name}" for e in self.effects if not e.touches_temperature()
-                              for p in e.parameters]
+                              for p in e.parameters if not p.per_test]
 
     # -- evaluation ------------------------------------------------------------------
-    def _active(self, values: dict) -> list[tuple[Effect, dict]]:
+    def _active(self, values: dict, data: Measurements | None = None) -> list[tuple[Effect, dict]]:
         out = []
         for e in self.effects:
-            v = {p.name: float(values.get(f"{e.name}.{p.name}", p.neutral)) for p in e.parameters}
+            v = {}
+            for p in e.parameters:
+                x = values.get(f"{e.name}.{p.name}", p.neutral)
+                v[p.name] = (per_sample(x, data) if p.per_test and data is not None else float(x))
             if not e.is_neutral(v):
                 out.append((e, v))
         return out
@@ -96,9 +123,10 @@ class BenchModel:
     def state(self, data: Measurements, values: dict | None = None) -> ModelState:
         values = {**self.neutral_values(), **(values or {})}
         amb = self.params.ambient_temp_C if data.ambient_C is None else data.ambient_C
-        return ModelState(self.params, data.time_s, data.hand_force_N, data.sign, data.initial_temp_C, amb,
+        t0 = data.initial_temp_C if values.get(INITIAL_TEMP) is None else per_sample(values[INITIAL_TEMP], data)
+        return ModelState(self.params, data.time_s, data.hand_force_N, data.sign, t0, amb,
                           float(values["heat_transfer_W_m2K"]), float(values["mu_drum"]),
-                          test_index=data.test_index)
+                          test_index=data.test_index, test_ids=data.tests)
 
     def drum_temperature(self, data: Measurements, values: dict | None = None,
                          state: ModelState | None = None) -> np.ndarray:
@@ -108,8 +136,12 @@ class BenchModel:
         p = self.params
         tau = cooling.cooling_time_constant_s(p.drum_density_kg_m3, p.drum_specific_heat_J_kgK, p.drum_volume_m3,
                                               st.heat_transfer_W_m2K, p.cooled_area_m2)
-        temp = cooling.drum_temperature_C(st.time_s, st.initial_temp_C, st.ambient_C, tau)
-        for e, v in self._active(values):
+        if ambient_varies(data):
+            temp = cooling.drum_temperature_logged_ambient_C(st.time_s, st.initial_temp_C, st.ambient_C, tau,
+                                                             data.test_index)
+        else:
+            temp = cooling.drum_temperature_C(st.time_s, st.initial_temp_C, st.ambient_C, tau)
+        for e, v in self._active(values, data):
             temp = e.drum_temperature(st, temp, v)
         return temp
 
@@ -117,7 +149,7 @@ class BenchModel:
                 drum_temp_C: np.ndarray | None = None) -> Prediction:
         """Both channels for every sample; *drum_temp_C* reuses a temperature already computed."""
         values = {**self.neutral_values(), **(values or {})}
-        active = self._active(values)
+        active = self._active(values, data)
         p = self.params
         st = self.state(data, values)
         st.drum_temp_C = self.drum_temperature(data, values, st) if drum_temp_C is None else drum_temp_C
@@ -153,4 +185,33 @@ class BenchModel:
         factor = drum.self_energising_factor(mu, st.sign, p.shoe_arm_normal_m, p.shoe_arm_friction_m)
         f_l = drum.normal_force_N(f0, factor)
         torque = drum.brake_torque_Nm(mu, f_l, p.drum_radius_m)
+        for e, v in active:
+            torque = e.torque(st, torque, v)
         return Prediction(st.drum_temp_C, np.broadcast_to(lining, st.time_s.shape), f_l, torque)
+
+
+def per_sample(value, data: Measurements) -> np.ndarray | float:
+    """A per-test quantity (scalar, or one value per test in ``data.tests`` order) at every sample."""
+    a = np.asarray(value, float)
+    if a.ndim == 0:
+        return float(a)
+    if a.shape != (data.n_tests,):
+        raise ValueError(f"per-test values: {a.shape[0]} given for {data.n_tests} tests")
+    return a[data.test_index]
+
+
+def ambient_varies(data: Measurements) -> bool:
+    """True when a logged ambient changes within a test (then eq. 10's ODE is integrated)."""
+    cached = getattr(data, "_ambient_varies", None)
+    if cached is None:
+        a = data.ambient_C
+        if a is None:
+            cached = False
+        else:
+            lo = np.full(data.n_tests, np.inf)
+            hi = np.full(data.n_tests, -np.inf)
+            np.minimum.at(lo, data.test_index, a)
+            np.maximum.at(hi, data.test_index, a)
+            cached = bool(np.any(hi > lo))
+        data._ambient_varies = cached
+    return cached
