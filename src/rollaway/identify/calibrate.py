@@ -22,7 +22,7 @@ from dataclasses import dataclass, field
 import numpy as np
 from scipy import stats
 
-from rollaway.identify.fitting import Problem
+from rollaway.identify.fitting import Problem, single_blas_thread
 from rollaway.identify.measurements import Measurements
 from rollaway.identify.model import INITIAL_TEMP, BenchModel, Prediction
 
@@ -159,8 +159,9 @@ def _noise_weights(data: Measurements, model: BenchModel, values: dict) -> tuple
         1.0 / np.maximum(np.broadcast_to(sq, (len(data),)), 1e-9)
 
 
+@single_blas_thread
 def calibrate(data: Measurements, effects=(), params=None, *, free=None, start: dict | None = None,
-              model: BenchModel | None = None, per_test: bool = True) -> FitResult:
+              model: BenchModel | None = None, per_test: bool = True, statistics: bool = True) -> FitResult:
     """Fit μ_d, h, every parameter of *effects* and each test's T_0 to *data* (both channels jointly).
 
     *free* restricts the fitted global names (others stay at *start*/neutral); *start* gives
@@ -188,11 +189,11 @@ def calibrate(data: Measurements, effects=(), params=None, *, free=None, start: 
         values[INITIAL_TEMP] = None
     w_t, w_q = _noise_weights(data, model, values)
     prob = Problem(model, data, names, families, values, w_t, w_q)
-    sol = prob.solve(init)
-    return _result(model, data, sol, prob, names, families)
+    sol = prob.solve(init, jacobian=statistics)
+    return _result(model, data, sol, prob, names, families, statistics)
 
 
-def _result(model, data, sol, prob, names, families) -> FitResult:
+def _result(model, data, sol, prob, names, families, statistics=True) -> FitResult:
     vals = sol.values
     pred = model.predict(data, vals)
     n = len(data)
@@ -200,7 +201,7 @@ def _result(model, data, sol, prob, names, families) -> FitResult:
     rt_w, rq_w = r[:n], r[n:]
     # leverages: per-test families (block diagonal) + projected globals → effective parameters per channel
     lev = np.zeros(2 * n)
-    if families and sol.local_normal is not None:
+    if families and sol.local_normal is not None and statistics:
         gm = np.stack(sol.local_grad, axis=1)
         inv = np.linalg.pinv(sol.local_normal)
         lev += np.einsum("ia,iab,ib->i", gm, inv[prob.rows_test], gm)
@@ -211,7 +212,11 @@ def _result(model, data, sol, prob, names, families) -> FitResult:
     dof_t, dof_q = max(n - p_t, 1.0), max(n - p_q, 1.0)
     phi_t, phi_q = float(rt_w @ rt_w) / dof_t, float(rq_w @ rq_w) / dof_q
     estimates, warnings, corr = {}, [], None
-    if names:
+    if names and jac is None:
+        for name in names:
+            lo, hi = model.bounds(name)
+            estimates[name] = ParameterEstimate(name, float(vals[name]), model.unit(name), math.nan, (lo, hi), lo, hi)
+    elif names:
         rowscale = np.concatenate([np.full(n, 1 / np.sqrt(max(phi_t, 1e-300))),
                                    np.full(n, 1 / np.sqrt(max(phi_q, 1e-300)))])
         cov = _covariance(jac * rowscale[:, None]) * np.outer(sol.scale, sol.scale)
@@ -232,7 +237,7 @@ def _result(model, data, sol, prob, names, families) -> FitResult:
                                 f"({lo if at == 'lower' else hi:g} {model.unit(name)}); the data push it out of "
                                 f"the physical range or the effect is absent — its interval is not meaningful")
     per_test = {}
-    if families and sol.local_normal is not None:
+    if families and sol.local_normal is not None and statistics:
         scaled = sol.local_normal / np.where(np.arange(2 * n) < n, phi_t, phi_q).mean()
         inv = np.linalg.pinv(scaled)
         for a, f in enumerate(families):

@@ -24,6 +24,7 @@ import numpy as np
 
 from rollaway.effects import available_effects, get_effect
 from rollaway.identify.calibrate import FitResult, calibrate, evaluate
+from rollaway.identify.fitting import single_blas_thread
 from rollaway.identify.measurements import Measurements
 from rollaway.identify.noise import Noise, noise_estimate
 from rollaway.identify.residuals import association, structure_tests, trend_words
@@ -33,7 +34,8 @@ BIC_THRESHOLD = -10.0        # "very strong" evidence (Kass & Raftery 1995)
 INDISTINGUISHABLE_BIC = 6.0  # candidates within this ΔBIC of the best cannot be told apart
 CV_TOP = 3                   # cross-validate at most this many candidates per step
 MAX_EFFECTS = 3              # forward selection stops after this many effects
-MAX_FOLDS = 8                # K-fold by test: leave-one-test-out up to 8 tests, else 8 folds
+LOO_TESTS = 10               # K-fold by test: leave-one-test-out up to 10 tests, else FOLDS folds
+FOLDS = 5
 PARTIAL_SHARE = 0.5          # "explains most of the baseline's excess error"
 
 
@@ -161,8 +163,8 @@ def _chi2(fit: FitResult) -> float:
 
 # -- cross-validation -----------------------------------------------------------------------
 def folds(n_tests: int) -> list[np.ndarray]:
-    """Test indices of each held-out fold: one test each up to MAX_FOLDS tests, else MAX_FOLDS folds."""
-    k = min(n_tests, MAX_FOLDS)
+    """Test indices of each held-out fold: one test each up to LOO_TESTS tests, else FOLDS folds."""
+    k = n_tests if n_tests <= LOO_TESTS else FOLDS
     return [np.arange(i, n_tests, k) for i in range(k)]
 
 
@@ -185,10 +187,10 @@ def cv_score(data: Measurements, effects, params, start: FitResult) -> np.ndarra
         out = np.isin(data.test_index, held)
         keep = np.setdiff1d(np.arange(data.n_tests), held)
         train, test = data.subset(~out), data.subset(out)
-        fit = calibrate(train, effects, params, start=_restrict(start.values, fams, keep))
+        fit = calibrate(train, effects, params, start=_restrict(start.values, fams, keep), statistics=False)
         vals = {n: fit.values[n] for n in glob}
         vals.update(_restrict(start.values, fams, np.asarray(held)))
-        pred = calibrate(test, effects, params, free=[], start=vals)
+        pred = calibrate(test, effects, params, free=[], start=vals, statistics=False)
         r = np.concatenate([(test.drum_temp_C - pred.prediction.drum_temp_C) / test.temp_sigma_C,
                             (test.torque_Nm - pred.prediction.torque_Nm) / test.torque_sigma_Nm])
         scores[np.asarray(held)] = np.bincount(np.concatenate([test.test_index, test.test_index]), r * r,
@@ -220,6 +222,7 @@ def _step(data, params, names, current: FitResult, chosen: list[str], step: int)
     return cands, strong, passing, cur_cv
 
 
+@single_blas_thread
 def diagnose(data: Measurements, params=None, effects=None, *, noise_torque_Nm: float | None = None,
              noise_temp_C: float | None = None, max_effects: int = MAX_EFFECTS) -> Diagnosis:
     """Select effects from *effects* (default: the catalogue plus registered plugins) for *data*.

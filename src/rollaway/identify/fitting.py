@@ -19,15 +19,35 @@ already accounted for (the Schur complement of the full normal matrix).
 """
 from __future__ import annotations
 
+import functools
 from dataclasses import dataclass
 
 import numpy as np
 from scipy import optimize
+from threadpoolctl import threadpool_limits
 
 from rollaway.identify.measurements import Measurements
 from rollaway.identify.model import INITIAL_TEMP, BenchModel
 
 MAX_OUTER = 4
+_single_thread = False
+
+
+def single_blas_thread(func):
+    """Run *func* with one BLAS thread: the fits multiply tall, thin matrices (2·N × a few columns), where
+    a multi-threaded BLAS spends more time waking threads than computing (4× slower on a busy machine)."""
+    @functools.wraps(func)
+    def wrapper(*args, **kwargs):
+        global _single_thread
+        if _single_thread:
+            return func(*args, **kwargs)
+        _single_thread = True
+        try:
+            with threadpool_limits(limits=1, user_api="blas"):
+                return func(*args, **kwargs)
+        finally:
+            _single_thread = False
+    return wrapper
 
 
 @dataclass
@@ -90,7 +110,14 @@ class Problem:
         r = r0 + np.einsum("ij,ij->i", gm, d[self.rows_test])
         return r, step, grads, normal
 
-    def solve(self, start: dict, tol: float = 1e-9) -> Solution:
+    def solve(self, start: dict, tol: float = 1e-10, jacobian: bool = True) -> Solution:
+        """Fit the globals (and per-test families); *jacobian*: also the projected Jacobian for errors.
+
+        The globals are fitted by MINPACK's Levenberg–Marquardt (:func:`scipy.optimize.least_squares`,
+        ``method="lm"``) in bounded-to-unbounded coordinates x = lo + (hi − lo)·(sin z + 1)/2 (the
+        MINUIT transformation, as lmfit uses): the residual has 2·N rows and only a few columns, where
+        MINPACK's QR is much cheaper per iteration than the trust-region-reflective solver.
+        """
         model, names = self.model, self.names
         vals = {**self.values, **{n: start[n] for n in names if n in start}}
         for f in self.families:
@@ -99,22 +126,24 @@ class Problem:
         hi = np.array([model.bounds(n)[1] for n in names])
         x0 = np.clip(np.array([vals[n] for n in names], float), lo, hi)
         x0 = np.where(x0 <= lo, lo + 1e-6 * (hi - lo), np.where(x0 >= hi, hi - 1e-6 * (hi - lo), x0))
-        scale = np.maximum(np.abs(x0), 1e-3 * (hi - lo)) if names else np.zeros(0)
-        jac = None
-        z = x0 / scale if names else x0
+        z = np.arcsin(np.clip(2.0 * (x0 - lo) / np.where(hi > lo, hi - lo, 1.0) - 1.0, -1.0, 1.0))
+
+        def to_x(zz):
+            return lo + (hi - lo) * (np.sin(zz) + 1.0) / 2.0
+
         for _ in range(MAX_OUTER):
             fixed = dict(vals)
 
             def fun(zz):
                 v = dict(fixed)
-                v.update(zip(names, zz * scale))
+                v.update(zip(names, to_x(zz)))
                 return self.profile(v)[0]
 
             if names:
-                res = optimize.least_squares(fun, z, bounds=(lo / scale, hi / scale), method="trf", x_scale=1.0,
-                                             xtol=tol, ftol=tol, gtol=tol, max_nfev=100 * (len(names) + 1))
-                z, jac = res.x, res.jac
-                vals.update(zip(names, z * scale))
+                res = optimize.least_squares(fun, z, method="lm", xtol=tol, ftol=tol, gtol=tol,
+                                             max_nfev=200 * (len(names) + 1))
+                z = res.x
+                vals.update(zip(names, to_x(z)))
             r_lin, step, _, _ = self.profile(vals)
             if not self.families:
                 break
@@ -125,6 +154,17 @@ class Problem:
                 break
         r, _, grads, normal = self.profile(vals)
         r_true = self.raw(vals)
-        if names and jac is None:
-            jac = np.zeros((r.size, len(names)))
+        x = np.array([vals[n] for n in names], float)
+        scale = np.maximum(np.abs(x), 1e-3 * (hi - lo)) if names else np.zeros(0)
+        jac = self.projected_jacobian(vals, r, lo, hi, scale) if (names and jacobian) else None
         return Solution(vals, r_true, jac, scale, grads, normal, self.nfev)
+
+    def projected_jacobian(self, vals, r0, lo, hi, scale) -> np.ndarray:
+        """∂(projected residual)/∂(x/scale) by forward differences, stepping inwards at a bound."""
+        jac = np.empty((r0.size, len(self.names)))
+        for i, n in enumerate(self.names):
+            h = 1e-6 * scale[i]
+            if vals[n] + h > hi[i]:
+                h = -h
+            jac[:, i] = (self.profile({**vals, n: vals[n] + h})[0] - r0) / h * scale[i]
+        return jac

@@ -87,9 +87,12 @@ def pseudo_residuals(time_s, values, test_index, time_constant_s: float, degree:
     use_t = (span[:, 0] <= 1e-9 * np.max(np.abs(x), axis=1))    # cooling coordinate degenerate: use time
     x = np.where(use_t[:, None], t, x)
     x = (x - x.mean(axis=1, keepdims=True)) / np.maximum(np.ptp(x, axis=1, keepdims=True), 1e-300)
-    vander = x[:, :, None] ** np.arange(degree + 1)           # windows × m × (p+1)
-    u, _, _ = np.linalg.svd(vander, full_matrices=True)
-    c = u[:, :, -1]                                            # orthogonal to the polynomials, ‖c‖ = 1
+    # the (p+1)-th divided difference over p+2 points annihilates every polynomial of degree ≤ p:
+    # c_j ∝ 1/Π_{i≠j}(x_j − x_i); normalised to ‖c‖ = 1
+    diff = x[:, :, None] - x[:, None, :]
+    diff[:, np.arange(m), np.arange(m)] = 1.0
+    c = 1.0 / np.prod(diff, axis=2)
+    c /= np.linalg.norm(c, axis=1, keepdims=True)
     y = np.asarray(values, float)[w]
     return np.einsum("ij,ij->i", c, y), np.abs(y).mean(axis=1), w, c
 
