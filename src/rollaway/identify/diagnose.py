@@ -247,7 +247,7 @@ def diagnose(data: Measurements, params=None, effects=None, *, noise_torque_Nm: 
           f"Calibrated baseline (μ_d = {base.values['mu_drum']:.4g}, h = {base.values['heat_transfer_W_m2K']:.4g} "
           f"W/(m² K)): {base.rmse_torque_Nm:.3g} N·m and {base.rmse_temp_C:.3g} °C; "
           + _describe_residual(base, "torque") + "; " + _describe_residual(base, "temperature") + "."]
-    current, chosen, steps = base, [], []
+    current, chosen, steps, fits = base, [], [], []
     first_cands, base_cv, indist, struct = [], None, [], base_struct
     for step in range(1, max_effects + 1):
         cands, strong, passing, cur_cv = _step(data, params, names, current, chosen, step)
@@ -275,8 +275,18 @@ def diagnose(data: Measurements, params=None, effects=None, *, noise_torque_Nm: 
                   f"{cur_cv:.1f} → {best.cv_score:.1f} (better in {best.cv_better_tests} of {data.n_tests} tests).  "
                   f"Expected signature: {get_effect(best.effect).signature}.")
         current = best.fit
+        fits.append(current)
         if not struct["structured"]:
             break
+    if len(chosen) >= 2:
+        chosen, current, struct, swaps = _exchange(data, params, names, chosen, current, struct, nq, nt)
+        chosen, current, struct, removed = _eliminate(data, params, chosen, current, struct, nq, nt)
+        swaps += [(a, "nothing", d) for a, d in removed]
+        if swaps:
+            fits = [None] * (len(chosen) - 1) + [current]
+            steps.append({"step": "exchange", "swaps": swaps})
+            ev.append("Exchange step: " + "; ".join(f"{a} replaced by {b} (BIC {d:+.1f})" for a, b, d in swaps)
+                      + " — an effect picked early had absorbed part of a later one's signature.")
     refined = current
     selected = [{"effect": e, "form": "exact"} for e in chosen]
     shape = None
@@ -293,7 +303,13 @@ def diagnose(data: Measurements, params=None, effects=None, *, noise_torque_Nm: 
         ev.append(f"The refined residual is consistent with noise ({_structure_words(struct)}).")
     else:
         remaining = True
-        part = _partial(data, params, base, refined, chosen, nq, nt)
+        part = None
+        for j in range(1, len(chosen) + 1):       # the fewest effects whose flexible form clears the residual
+            if fits[j - 1] is None:
+                continue
+            part = _partial(data, params, base, fits[j - 1], chosen[:j], nq, nt)
+            if part is not None:
+                break
         if part is None:
             verdict, selected, indist = "none", [], []
             ev.append(f"But the residual of baseline + {' + '.join(chosen)} is still structured "
@@ -302,16 +318,69 @@ def diagnose(data: Measurements, params=None, effects=None, *, noise_torque_Nm: 
                       f"as a plugin and refit.")
         else:
             name, share, shape, flex_struct = part
-            verdict = chosen[0]
+            refined = fits[j - 1]
+            struct = structure(refined, nq, nt)
+            dropped = chosen[j:]
+            selected = [{"effect": e, "form": "partial" if e == name else "exact"} for e in chosen[:j]]
             for e in selected:
                 if e["effect"] == name:
-                    e.update(form="partial", explained_share=share)
+                    e["explained_share"] = share
+            verdict = chosen[0]
             ev.append(f"{name} explains {share:.0%} of the baseline's excess error but its catalogue form leaves "
                       f"structure ({_structure_words(struct)}); a flexible version of its {shape['hook']} hook "
                       f"(linear spline in {shape['covariate']}) leaves none: form \"partial\" — the data want "
-                      f"the shape shown (write it as a plugin).")
+                      f"the shape shown (write it as a plugin)."
+                      + (f"  {', '.join(dropped)} only absorbed part of this form mismatch and is not kept."
+                         if dropped else ""))
     return Diagnosis(data, paper, base, nq, nt, first_cands, verdict, indist if verdict != "none" else [], refined,
                      remaining, struct, base_cv, ev, selected, steps, shape)
+
+
+def _exchange(data, params, names, chosen, current, struct, nq, nt, rounds: int = 2):
+    """Stepwise exchange: replace a selected effect by an unselected one while BIC improves and the
+    residual stays as clean (forward selection can pick an effect that absorbs part of a later one)."""
+    swaps = []
+    for _ in range(rounds):
+        best = None
+        for i, old in enumerate(chosen):
+            for new in names:
+                if new in chosen:
+                    continue
+                trial = chosen[:i] + [new] + chosen[i + 1:]
+                fit = calibrate(data, trial, params, start=current.values, statistics=False)
+                if fit.bic < current.bic - 2.0 and (best is None or fit.bic < best[2].bic):
+                    best = (i, new, fit)
+        if best is None:
+            break
+        i, new, _ = best
+        trial = chosen[:i] + [new] + chosen[i + 1:]
+        fit = calibrate(data, trial, params, start=best[2].values)
+        s = structure(fit, nq, nt)
+        if s["structured"] and not struct["structured"]:
+            break
+        swaps.append((chosen[i], new, fit.bic - current.bic))
+        chosen, current, struct = trial, fit, s
+    return chosen, current, struct, swaps
+
+
+def _eliminate(data, params, chosen, current, struct, nq, nt):
+    """Backward elimination: drop a selected effect when the model without it has the lower BIC and a
+    residual as clean."""
+    removed = []
+    while len(chosen) >= 2:
+        trials = []
+        for i in range(len(chosen)):
+            rest = chosen[:i] + chosen[i + 1:]
+            trials.append((calibrate(data, rest, params, start=current.values), i))
+        fit, i = min(trials, key=lambda t: t[0].bic)
+        if fit.bic >= current.bic:
+            break
+        s = structure(fit, nq, nt)
+        if s["structured"] and not struct["structured"]:
+            break
+        removed.append((chosen[i], fit.bic - current.bic))
+        chosen, current, struct = chosen[:i] + chosen[i + 1:], fit, s
+    return chosen, current, struct, removed
 
 
 def _partial(data, params, base: FitResult, refined: FitResult, chosen: list[str], nq: Noise, nt: Noise):

@@ -3,8 +3,8 @@
 When a catalogue effect explains most of the misfit but leaves structure, its *physics* (which
 quantity it changes) is probably right and its *form* wrong.  :func:`flexible_effect` builds an
 effect that changes the same quantity by a factor ``1 + g(x)``, g a linear spline in the
-effect's covariate x (time, lining or drum temperature, hand force) with knots at the
-covariate's quantiles and g = 0 at the lowest knot — no functional form assumed.  Fitting it
+effect's covariate x (time, lining or drum temperature, hand force) with equally spaced
+knots over the covariate's range and g = 0 at the lowest knot — no functional form assumed.  Fitting it
 shows what the data want; :func:`shape_curves` evaluates both factors on a grid for a figure.
 """
 from __future__ import annotations
@@ -13,7 +13,7 @@ import numpy as np
 
 from rollaway.effects.base import Effect, EffectParameter
 
-KNOTS = 6                     # spline segments
+KNOTS = 8                     # spline segments (equal widths over the covariate's range)
 HOOK_COVARIATE = {"friction": "lining_temp_C", "lining_modulus": "lining_temp_C", "clamp_force": "time_s",
                   "displacement": "time_s", "gap": "time_s", "drum_temperature": "time_s",
                   "lining_temperature": "time_s", "torque": "time_s"}
@@ -56,7 +56,7 @@ def flexible_effect(effect: Effect, covariate_values: np.ndarray) -> type[Effect
         return None
     hook, cov = found
     x = np.asarray(covariate_values, float)
-    knots = np.unique(np.quantile(x, np.linspace(0.0, 1.0, KNOTS + 1)))
+    knots = np.unique(np.linspace(float(np.min(x)), float(np.max(x)), KNOTS + 1))
     if len(knots) < 3:
         return None
     n = len(knots) - 1
