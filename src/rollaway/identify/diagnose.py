@@ -318,6 +318,7 @@ def diagnose(data: Measurements, params=None, effects=None, *, noise_torque_Nm: 
                       f"as a plugin and refit.")
         else:
             name, share, shape, flex_struct = part
+            shape["effect"] = name
             refined = fits[j - 1]
             struct = structure(refined, nq, nt)
             dropped = chosen[j:]

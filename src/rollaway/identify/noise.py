@@ -10,9 +10,9 @@ significantly smaller variance (the signal's curvature between samples leaks in)
 highest degree the data allow still decreases, or too few combinations remain, the
 estimate is flagged unreliable (an upper bound) and the caller must say so.
 
-Robust to outliers and steps: σ is a Huber-type scale (mean of e² clipped at c·σ,
-iterated from the MAD, Gaussian-consistent), so a spike or a step touches only the few
-combinations that straddle it and those are clipped.  With ``relative``, σ_i² = a² +
+Robust to outliers and steps: σ is a trimmed scale (mean of e² over |e| < 3.5σ, iterated
+from the MAD, Gaussian-consistent), so a spike or a step touches only the few combinations
+that straddle it and those get no weight.  With ``relative``, σ_i² = a² +
 (b·y_i)² is fitted to the clipped e² (iteratively reweighted non-negative least squares),
 so a torque noise proportional to the signal is recognised.
 """
@@ -24,17 +24,18 @@ from dataclasses import dataclass
 import numpy as np
 from scipy import optimize, stats
 
-CLIP = 3.5                 # clip standardised values at ±3.5 σ (Huber-type)
-# E[min(Z², c²)] for standard normal Z: keeps the clipped mean square Gaussian-consistent
-CLIP_GAUSS = float(1 - 2 * ((CLIP * stats.norm.pdf(CLIP) + stats.norm.sf(CLIP)) - CLIP ** 2 * stats.norm.sf(CLIP)))
+CLIP = 3.5                 # values beyond ±3.5 σ are outliers (a spike, the samples around a step)
+# E[Z²·1(|Z| < c)] for standard normal Z: keeps the trimmed mean square Gaussian-consistent
+CLIP_GAUSS = float(1 - 2 * (CLIP * stats.norm.pdf(CLIP) + stats.norm.sf(CLIP)))
 MAX_DEGREE = 4
 MIN_DOF = 10               # fewer effective combinations: the estimate is not reliable
 CURVATURE_P = 0.01         # significance of "the next degree is smaller"
 
 
 def clip_square(z: np.ndarray) -> np.ndarray:
-    """min(z², c²) / E[min(Z², c²)]: a Gaussian-consistent, outlier-bounded square."""
-    return np.minimum(np.square(z), CLIP ** 2) / CLIP_GAUSS
+    """z²·1(|z| < c) / E[Z²·1(|Z| < c)]: a Gaussian-consistent square that gives outliers no weight."""
+    z2 = np.square(z)
+    return np.where(z2 < CLIP ** 2, z2, 0.0) / CLIP_GAUSS
 
 
 @dataclass
@@ -137,7 +138,8 @@ def noise_estimate(data, values: np.ndarray, time_constant_s: float, relative: b
             break
         a, b = _scale(e, level, relative)
         sig = np.sqrt(a * a + (b * level) ** 2)
-        z = np.clip(e / np.maximum(sig, 1e-300), -CLIP, CLIP)
+        z = e / np.maximum(sig, 1e-300)
+        z = z[np.abs(z) < CLIP]
         kurt = float(np.mean(z ** 4) / max(np.mean(z ** 2), 1e-300) ** 2)
         dof = _effective_dof(w, c, kurt)
         fits.append((p, a, b, float(np.sqrt(np.mean(sig ** 2))), dof))

@@ -151,6 +151,7 @@ def comparison_report(cmp, path) -> None:
 
 def diagnosis_report(diag, path) -> None:
     from rollaway.identify.ladder import Ladder
+    from rollaway.identify.shape import shape_figure
     noise = {"torque": diag.noise_torque.sigma, "temperature": diag.noise_temp.sigma}
     rungs = [("paper defaults", diag.paper), ("calibrated baseline", diag.baseline)]
     if diag.refined is not diag.baseline:
@@ -169,6 +170,8 @@ def diagnosis_report(diag, path) -> None:
             + _png(signals_figure([("baseline", diag.baseline), ("refined", diag.refined)]))
             + "<h2>Residuals of the calibrated baseline</h2>" + _png(residual_figure(diag.baseline, noise))
             + "<h2>Residuals of the refined model</h2>" + _png(residual_figure(diag.refined, noise))
+            + (f"<h2>Form partial: what the data want</h2>" + _png(shape_figure(diag.shape, diag.shape.get("effect", diag.verdict)))
+               if diag.shape else "")
             + "<h2>Refined model parameters (95 % intervals)</h2>" + params_table(diag.refined))
     _write(path, _page(f"rollaway diagnose — {diag.data.source}", body))
 

@@ -48,7 +48,7 @@ def structure_tests(data: Measurements, residual: np.ndarray, noise: Noise, k: f
                     mask: np.ndarray | None = None, sigma: np.ndarray | None = None) -> dict:
     """Tests for structure left in *residual* (measured − model) given the noise model.
 
-    * ``excess_variance``: clipped mean square of r/σ against the noise's (F test; degrees of
+    * ``excess_variance``: trimmed mean square of r/σ against the noise's (F test; degrees of
       freedom reduced for heavy tails through the kurtosis, *k* fitted parameters removed);
     * ``autocorrelation``: pooled lag-1 autocorrelation within tests (white noise: ≈ 0);
     * ``test_offsets``: per-test mean residuals against the within-test scatter (ANOVA F);
@@ -63,7 +63,7 @@ def structure_tests(data: Measurements, residual: np.ndarray, noise: Noise, k: f
     ti = data.test_index[m]
     n = z.size
     dof_r = max(n - k, 1.0)
-    ratio = float(clip_square(z).sum()) / dof_r
+    ratio = float(clip_square(residual[m] / sig[m]).sum()) / dof_r
     kurt = float(np.mean(z ** 4) / max(np.mean(z ** 2), 1e-300) ** 2)
     p_var = float(stats.f.sf(ratio, dof_r * 2.0 / max(kurt - 1.0, 0.5), max(noise.dof, 1.0)))
     order = np.lexsort((data.time_s[m], ti))
