@@ -16,7 +16,7 @@ Follow ``hand_force_N`` through :meth:`DrumModel.evaluate`:
 5. clamp force F_l0 before self-energising, eq. (16a/b)       hook ``clamp_force``
 6. friction coefficient μ_d                                   hook ``friction``
 7. self-energising factor, eqs. (18)–(21); F_l = F_l0 · factor
-8. brake torque T_gen = μ_d · F_l · r_d, eq. (17b)
+8. brake torque T_gen = μ_d · F_l · r_d, eq. (17b)            hook ``torque`` (e.g. a transducer offset)
 
 With no effect away from its neutral values the chain runs exactly the paper's functions
 in the paper's order (bit-identical to the baseline).  Everything broadcasts (numpy rules):
@@ -214,7 +214,7 @@ class DrumModel:
 
     # -- the chain ---------------------------------------------------------------------
     def state(self, time_s, hand_force_N, direction="downhill", *, mu_drum=None, initial_temp_C=None,
-              ambient_C=None, heat_transfer_W_m2K=None, test_index=None) -> ModelState:
+              ambient_C=None, heat_transfer_W_m2K=None, test_index=None, test_ids=None) -> ModelState:
         """Inputs of the chain broadcast to one shape, as the effect hooks see them."""
         p = self.params
         sign = direction_to_sign(direction)
@@ -226,18 +226,23 @@ class DrumModel:
         shape = np.broadcast_shapes(*(a.shape for a in arrays), np.shape(mu), np.shape(h))
         t, f, s, t0b, ambb = (np.broadcast_to(a, shape) for a in arrays)
         tid = None if test_index is None else np.broadcast_to(np.asarray(test_index), shape)
-        return ModelState(p, t, f, s, t0b, ambb, h, mu, test_index=tid)
+        return ModelState(p, t, f, s, t0b, ambb, h, mu, test_index=tid, test_ids=test_ids)
 
     def drum_temperature(self, time_s, *, initial_temp_C=None, ambient_C=None, heat_transfer_W_m2K=None,
-                         values: dict | None = None, state: ModelState | None = None, **state_kw) -> np.ndarray:
-        """Drum temperature over time, eq. (10) plus the effects' ``drum_temperature`` hooks [°C]."""
+                         values: dict | None = None, state: ModelState | None = None,
+                         base_temp_C: ArrayLike | None = None, **state_kw) -> np.ndarray:
+        """Drum temperature over time, eq. (10) plus the effects' ``drum_temperature`` hooks [°C].
+
+        *base_temp_C*: the cooling law's temperature when it was integrated elsewhere (a logged,
+        time-varying ambient, :func:`rollaway.physics.cooling.drum_temperature_logged_ambient_C`).
+        """
         p = self.params
         t0 = p.initial_drum_temp_C if initial_temp_C is None else np.asarray(initial_temp_C, float)
         amb = p.ambient_temp_C if ambient_C is None else ambient_C
         h = p.heat_transfer_W_m2K if heat_transfer_W_m2K is None else heat_transfer_W_m2K
         tau = cooling.cooling_time_constant_s(p.drum_density_kg_m3, p.drum_specific_heat_J_kgK, p.drum_volume_m3,
                                               h, p.cooled_area_m2)
-        temp = cooling.drum_temperature_C(time_s, t0, amb, tau)
+        temp = cooling.drum_temperature_C(time_s, t0, amb, tau) if base_temp_C is None else base_temp_C
         hooks = [(e, v) for e, v in self.active(values) if e.touches_temperature()]
         if not hooks:
             return temp
@@ -252,7 +257,7 @@ class DrumModel:
                  mu_drum: ArrayLike | None = None, gap_m: ArrayLike | None = None,
                  initial_temp_C: ArrayLike | None = None, ambient_C: ArrayLike | None = None,
                  heat_transfer_W_m2K: ArrayLike | None = None, test_index: ArrayLike | None = None,
-                 values: dict | None = None, drum_temp_C: ArrayLike | None = None) -> BrakeSeries:
+                 values: dict | None = None, drum_temp_C: ArrayLike | None = None, test_ids=None) -> BrakeSeries:
         """The drum chain (module docstring, steps 1–8) for every element of the broadcast inputs.
 
         *direction*: ``"downhill"``/``"uphill"`` or numeric signs; *values*: effect values that
@@ -264,7 +269,7 @@ class DrumModel:
             return self._baseline(time_s, hand_force_N, direction, mu_drum, gap_m, initial_temp_C, ambient_C,
                                   heat_transfer_W_m2K, drum_temp_C)
         return self._with_effects(active, time_s, hand_force_N, direction, mu_drum, gap_m, initial_temp_C,
-                                  ambient_C, heat_transfer_W_m2K, test_index, values, drum_temp_C)
+                                  ambient_C, heat_transfer_W_m2K, test_index, values, drum_temp_C, test_ids)
 
     def _baseline(self, time_s, hand_force_N, direction, mu_drum, gap_m, initial_temp_C, ambient_C,
                   heat_transfer_W_m2K, drum_temp_C) -> BrakeSeries:
@@ -299,10 +304,11 @@ class DrumModel:
             lining_thickness_m=p.lining_thickness_m, gap_m=gap_m)
 
     def _with_effects(self, active, time_s, hand_force_N, direction, mu_drum, gap_m, initial_temp_C, ambient_C,
-                      heat_transfer_W_m2K, test_index, values, drum_temp_C) -> BrakeSeries:
+                      heat_transfer_W_m2K, test_index, values, drum_temp_C, test_ids=None) -> BrakeSeries:
         p = self.params
         st = self.state(time_s, hand_force_N, direction, mu_drum=mu_drum, initial_temp_C=initial_temp_C,
-                        ambient_C=ambient_C, heat_transfer_W_m2K=heat_transfer_W_m2K, test_index=test_index)
+                        ambient_C=ambient_C, heat_transfer_W_m2K=heat_transfer_W_m2K, test_index=test_index,
+                        test_ids=test_ids)
         shape = st.time_s.shape
         for e, v in active:                       # effect values may be arrays (uncertainty draws)
             shape = np.broadcast_shapes(shape, *(np.shape(x) for x in v.values()))
@@ -311,7 +317,8 @@ class DrumModel:
                             mu_drum=st.mu_drum, initial_temp_C=np.broadcast_to(st.initial_temp_C, shape),
                             ambient_C=np.broadcast_to(st.ambient_C, shape),
                             heat_transfer_W_m2K=st.heat_transfer_W_m2K,
-                            test_index=None if st.test_index is None else np.broadcast_to(st.test_index, shape))
+                            test_index=None if st.test_index is None else np.broadcast_to(st.test_index, shape),
+                            test_ids=test_ids)
         temp = (self.drum_temperature(st.time_s, initial_temp_C=st.initial_temp_C, ambient_C=st.ambient_C,
                                       heat_transfer_W_m2K=st.heat_transfer_W_m2K, values=values, state=st)
                 if drum_temp_C is None else drum_temp_C)
@@ -344,6 +351,8 @@ class DrumModel:
         factor = drum.self_energising_factor(mu, st.sign, p.shoe_arm_normal_m, p.shoe_arm_friction_m)  # step 7
         f_l = drum.normal_force_N(f0, factor)
         torque = drum.brake_torque_Nm(mu, f_l, p.drum_radius_m)                 # step 8, eq. (17b)
+        for e, v in active:
+            torque = _call_hook(e, "torque", st, torque, v)
         b = lambda a: np.broadcast_to(np.asarray(a, float), shape)  # noqa: E731
         return BrakeSeries(time_s=b(st.time_s), drum_temp_C=b(st.drum_temp_C), normal_force_N=b(f_l),
                            torque_Nm=b(torque), self_locked=np.broadcast_to(np.isinf(factor), shape),

@@ -76,3 +76,29 @@ def test_shoe_lag_solves_its_ode():
     assert tl[0] == pytest.approx(200.0)
     assert np.abs(dtl[1:-1] - (td - tl)[1:-1] / 700.0).max() < 1e-4
     assert np.all(tl >= td - 1e-9)   # the shoe stays warmer than the drum
+
+
+def test_logged_ambient_cooling_matches_an_ode_integration_and_eq10_when_constant():
+    from scipy.integrate import solve_ivp
+    from rollaway.physics.cooling import drum_temperature_C, drum_temperature_logged_ambient_C
+    t = np.r_[np.arange(0, 3601, 300.0), np.array([0, 45, 200, 730, 1800.0])]
+    idx = np.r_[np.zeros(13, int), np.ones(5, int)]
+    amb = np.r_[np.full(13, 27.0), 20 + t[13:] / 600]
+    temp = drum_temperature_logged_ambient_C(t, np.r_[np.full(13, 200.0), np.full(5, 150.0)], amb, 1000.0, idx)
+    assert np.abs(temp[:13] - drum_temperature_C(t[:13], 200.0, 27.0, 1000.0)).max() < 1e-9
+    ref = solve_ivp(lambda s, y: -(y - (20 + s / 600)) / 1000, (0, 1800), [150.0], t_eval=t[13:], rtol=1e-11,
+                    atol=1e-11).y[0]
+    assert np.abs(temp[13:] - ref).max() < 1e-6
+
+
+def test_hooks_see_the_test_and_per_test_parameters_take_one_value_per_test():
+    d = Measurements(np.array(["a"] * 3 + ["b"] * 3), np.array(["uphill"] * 6), np.full(6, 250.0),
+                     np.tile([0.0, 300.0, 600.0], 2), np.full(6, 200.0), np.zeros(6))
+    m = BenchModel(effects=["torque_zero_offset"])
+    assert m.per_test_parameters() == ["initial_temp_C", "torque_zero_offset.offset_Nm"]
+    base = m.predict(d).torque_Nm
+    shifted = m.predict(d, {"torque_zero_offset.offset_Nm": np.array([5.0, -7.0])}).torque_Nm
+    assert np.allclose(shifted - base, [5, 5, 5, -7, -7, -7])
+    assert m.state(d).test_ids == ["a", "b"]
+    warm = m.predict(d, {"initial_temp_C": np.array([210.0, 190.0])})
+    assert warm.drum_temp_C[0] == 210.0 and warm.drum_temp_C[3] == 190.0

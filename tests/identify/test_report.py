@@ -35,7 +35,7 @@ def test_diagnose_report_statistics(run_cli, creep_csv, tmp_path):
     assert code == 0, err
     assert json.loads(out)["verdict"] == "lining_creep"
     page = (tmp_path / "d.html").read_text()
-    for needle in ("Correlation of the torque stage", "reduced χ²", "evaluations", "initial",
+    for needle in ("Correlation of the joint (temperature + torque) stage", "reduced χ²", "evaluations", "initial",
                    "Leave-one-test-out score", "Missing effect found: lining_creep"):
         assert needle in page, needle
     assert "*relative*" not in page and not re.search(r"font-size:\s*[0-9]px", page)

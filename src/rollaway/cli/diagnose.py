@@ -18,9 +18,15 @@ def diagnose(
     report: Optional[str] = typer.Option(None, "--report", metavar="FILE", help="write a self-contained HTML report here"),
     fmt: str = typer.Option("text", "--format", metavar="FORMAT", help=FORMAT_HELP),
     save_model: Optional[str] = opt.SAVE_MODEL,
+    noise_torque_Nm: Optional[float] = typer.Option(None, "--noise-torque-Nm", min=0.0, metavar="NM",
+                                                    help="torque noise σ of the instrument [N·m] (default: "
+                                                         "estimated from the data)"),
+    noise_temp_C: Optional[float] = typer.Option(None, "--noise-temp-C", min=0.0, metavar="CELSIUS",
+                                                 help="drum-temperature noise σ of the instrument [°C] (default: "
+                                                      "estimated from the data)"),
 ) -> None:
-    """Calibrate μ_d and h, fit every catalogue effect jointly, rank by BIC and leave-one-test-out
-    cross-validation, and say which effect is missing (or 'none') with the evidence."""
+    """Calibrate μ_d, h and each test's T_0, select catalogue effects forward (BIC and K-fold
+    cross-validation by test), and say which effects are missing (or 'none') with the evidence."""
     from rollaway.identify.diagnose import diagnose as run
 
     from rollaway.cli.output import REPORT_FORMATS
@@ -28,7 +34,7 @@ def diagnose(
     check_choice(fmt, REPORT_FORMATS, "--format")
     prepare_outputs(report=report, json_out=json_out, save_model=save_model)
     load_plugins(effect_file)
-    diag = run(load_data(data), params)
+    diag = run(load_data(data), params, noise_torque_Nm=noise_torque_Nm or None, noise_temp_C=noise_temp_C or None)
     write_outputs(diag, report=report, json_out=json_out, fmt=fmt)
     if save_model:
         from rollaway.identify.export import save_fit

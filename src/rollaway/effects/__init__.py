@@ -24,13 +24,14 @@ from rollaway.effects.modulus_temperature import ModulusTemperature
 from rollaway.effects.nonlinear_lining_stiffness import NonlinearLiningStiffness
 from rollaway.effects.radiation_cooling import RadiationCooling
 from rollaway.effects.shoe_thermal_lag import ShoeThermalLag
+from rollaway.effects.torque_zero_offset import TorqueZeroOffset
 from rollaway.errors import UserError, check_choice
 
 ENTRY_POINT_GROUP = "rollaway.effects"
 
 CATALOGUE: dict[str, type[Effect]] = {cls.name: cls for cls in (
     FrictionTemperature, DrumRadialContraction, ShoeThermalLag, RadiationCooling, LiningCreep,
-    CableRelaxation, InstallationGap, ModulusTemperature, NonlinearLiningStiffness)}
+    CableRelaxation, InstallationGap, ModulusTemperature, NonlinearLiningStiffness, TorqueZeroOffset)}
 _USER: dict[str, type[Effect]] = {}
 HOOKS = ("drum_temperature", "lining_temperature", "displacement", "lining_modulus", "gap", "clamp_force",
          "friction")

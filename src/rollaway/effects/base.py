@@ -12,12 +12,18 @@ depth of the model chain (docs/model.md, "Model chain" items 1–7)::
     installation gap l_g           hook: gap                (eq. 16b)
     clamp force F_l0               hook: clamp_force        (eq. 16a/b, before self-energising)
     friction coefficient μ         hook: friction           (eqs. 17b–21)
+    measured torque                hook: torque             (the transducer: zero offset, gain)
 
 Each hook receives the :class:`ModelState` (all samples of all tests, already computed
 upstream quantities) and ``v``, a dict of this effect's parameter values, and returns
 the (possibly) modified quantity.  The default hooks return the input unchanged.
 The model skips an effect whose parameters are all at their neutral values, so the
 neutral model is bit-identical to the baseline (:func:`rollaway.brake.drum_brake`).
+
+Hooks see the test of every sample: ``state.test_index`` (position in ``state.test_ids``).
+A parameter declared with ``per_test=True`` takes one value per test; the hook then gets
+``v[name]`` as a per-sample array (each sample carries its own test's value), and the fit
+estimates one value per test (e.g. a torque transducer's zero, re-set before each test).
 
 Writing your own effect (plugin)::
 
@@ -63,6 +69,7 @@ class EffectParameter:
     initial: float          # starting point of a fit (off the neutral bound)
     description: str = ""
     typical: float | None = None   # a clearly visible but realistic value (synth default)
+    per_test: bool = False         # one value per test (hooks get a per-sample array)
 
     def __post_init__(self):
         if not (self.lower <= self.neutral <= self.upper and self.lower <= self.initial <= self.upper):
@@ -84,6 +91,7 @@ class ModelState:
     drum_temp_C: np.ndarray | None = None
     lining_temp_C: np.ndarray | None = None
     test_index: np.ndarray | None = None   # index of each sample's test (bench data), None on the road
+    test_ids: list | None = None           # test id of each index (bench data)
     extra: dict = field(default_factory=dict)
 
     @property
@@ -111,6 +119,9 @@ class Effect:
     signature: ClassVar[str] = ""
     reference: ClassVar[str] = ""
     parameters: ClassVar[tuple[EffectParameter, ...]] = ()
+    # covariate of the effect's flexible (shape-free) form drawn by diagnose when the form mismatches:
+    # "time_s", "lining_temp_C", "drum_temp_C" or "hand_force_N"; "" = chosen from the hook
+    shape_covariate: ClassVar[str] = ""
 
     # -- bookkeeping -----------------------------------------------------------------
     @classmethod
@@ -133,7 +144,16 @@ class Effect:
 
     @classmethod
     def is_neutral(cls, v: dict[str, float]) -> bool:
-        return all(v.get(p.name, p.neutral) == p.neutral for p in cls.parameters)
+        return all(np.all(np.asarray(v.get(p.name, p.neutral)) == p.neutral) for p in cls.parameters)
+
+    @classmethod
+    def per_test_parameters(cls) -> list[str]:
+        return [p.name for p in cls.parameters if p.per_test]
+
+    @classmethod
+    def overridden_hooks(cls) -> list[str]:
+        """Names of the hooks this effect changes."""
+        return [h for h in HOOKS if getattr(cls, h) is not getattr(Effect, h)]
 
     @classmethod
     def touches_temperature(cls) -> bool:
@@ -170,3 +190,11 @@ class Effect:
 
     def friction(self, state: ModelState, mu: np.ndarray, v: dict) -> np.ndarray:
         return mu
+
+    def torque(self, state: ModelState, torque_Nm: np.ndarray, v: dict) -> np.ndarray:
+        """The measured torque (the transducer), after eq. (17b)."""
+        return torque_Nm
+
+
+HOOKS = ("drum_temperature", "lining_temperature", "displacement", "lining_modulus", "gap", "clamp_force",
+         "friction", "torque")

@@ -17,6 +17,7 @@ class NonlinearLiningStiffness(Effect):
                "c = 1, a = b = 0 is the paper's linear spring.")
     signature = ("torque residual follows hand force, not time: torque against hand force is curved (low at "
                  "light forces for n > 1), the same relative pattern in both directions and at every time")
+    shape_covariate = "hand_force_N"
     reference = ("Day 2014, ch. 3 (friction-material compressibility, ISO 6310); Limpert 1999 §3; "
                  "McKinlay et al. 2004 (nonlinear pad stiffness in parking-brake clamp loads)")
     parameters = (

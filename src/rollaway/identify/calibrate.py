@@ -1,12 +1,18 @@
-"""Calibration: least-squares fit of the bench model's free parameters (lmfit-style result).
+"""Calibration: one joint fit of both channels (lmfit-style result).
 
-The drum-temperature channel does not depend on torque parameters, so the fit is done in
-two exact stages: (1) h plus temperature-changing effects against the drum temperature
-(samples after t = 0; T_0 is taken from the data), (2) μ_d plus the other effect parameters
-against the torque, with the stage-1 temperatures.  Each stage's covariance comes from its
-Jacobian: ``cov = s²·(JᵀJ)⁻¹``, 95 % intervals with Student's t.  The information criteria
-add both channels' Gaussian log-likelihoods (each with its own variance):
-``BIC = Σ_c n_c·ln(RSS_c/n_c) + k·ln(N)``, ``AIC = … + 2k``.
+Both measured channels are fitted together, each sample standardised by its noise σ
+(a model-free estimate, :mod:`rollaway.identify.noise`, or the instrument's figure), with
+every test's start temperature T_0 a nuisance parameter (the t = 0 reading is one noisy
+measurement of it, not its value) and per-test effect parameters profiled out
+(:mod:`rollaway.identify.fitting`).
+
+Covariance: ``cov = (J̃ᵀJ̃)⁻¹`` of the projected Jacobian in scaled variables, each channel's
+rows divided by √φ_c, φ_c = Σ(r/σ)²/(n_c − p_c) its residual variance factor (p_c: the
+channel's summed leverages), so a wrong σ does not shrink or inflate the intervals.  95 %
+intervals use Student's t and are clipped to the physical bounds; directions the data do
+not determine get an infinite error.  The information criteria add both channels' Gaussian
+log-likelihoods (each with its own variance): ``BIC = Σ_c n_c·ln(RSS_c/n_c) + k·ln(N)``,
+``AIC = … + 2k``.
 """
 from __future__ import annotations
 
@@ -14,10 +20,11 @@ import math
 from dataclasses import dataclass, field
 
 import numpy as np
-from scipy import optimize, stats
+from scipy import stats
 
+from rollaway.identify.fitting import Problem, single_blas_thread
 from rollaway.identify.measurements import Measurements
-from rollaway.identify.model import BenchModel, Prediction
+from rollaway.identify.model import INITIAL_TEMP, BenchModel, Prediction
 
 
 @dataclass
@@ -50,8 +57,15 @@ class FitResult:
     n_temp: int
     n_torque: int
     warnings: list[str] = field(default_factory=list)
-    rss_torque_weighted: float | None = None   # the WLS objective (= rss_torque without a noise model)
-    fit_info: dict = field(default_factory=dict)   # per stage: initial values, evaluations, convergence, correlation
+    rss_torque_weighted: float | None = None   # Σ (residual/σ)² of the torque channel
+    rss_temp_weighted: float | None = None     # Σ (residual/σ)² of the temperature channel
+    per_test: dict = field(default_factory=dict)    # family → {"values", "stderr", "unit"} (one per test)
+    correlation: np.ndarray | None = None      # correlation matrix of the fitted globals (order: names)
+    names: list[str] = field(default_factory=list)
+    effective_parameters: dict = field(default_factory=dict)   # channel → Σ leverages (fitted dof used)
+    variance_factor: dict = field(default_factory=dict)        # channel → Σ(r/σ)²/dof (1 if σ is right)
+    n_per_test: int = 0                        # per-test effect parameters (T_0 excluded)
+    fit_info: dict = field(default_factory=dict)   # for reports: initial values, evaluations, convergence
 
     @property
     def effects(self) -> list[str]:
@@ -59,7 +73,8 @@ class FitResult:
 
     @property
     def k(self) -> int:
-        return len(self.estimates)
+        """Free parameters counted by the information criteria (each test's T_0 excluded: every model has it)."""
+        return len(self.estimates) + self.n_per_test
 
     @property
     def rmse_temp_C(self) -> float:
@@ -72,7 +87,8 @@ class FitResult:
     def _loglik_term(self) -> float:
         tiny = 1e-12
         rss_q = self.rss_torque if self.rss_torque_weighted is None else self.rss_torque_weighted
-        return (self.n_temp * math.log(max(self.rss_temp / max(self.n_temp, 1), tiny))
+        rss_t = self.rss_temp if self.rss_temp_weighted is None else self.rss_temp_weighted
+        return (self.n_temp * math.log(max(rss_t / max(self.n_temp, 1), tiny))
                 + self.n_torque * math.log(max(rss_q / max(self.n_torque, 1), tiny)))
 
     @property
@@ -88,7 +104,28 @@ class FitResult:
         return (self.data.drum_temp_C - self.prediction.drum_temp_C, self.data.torque_Nm - self.prediction.torque_Nm)
 
     def effect_parameters(self, effect: str) -> dict[str, dict]:
-        return {n.split(".", 1)[1]: e.as_dict() for n, e in self.estimates.items() if n.startswith(effect + ".")}
+        out = {n.split(".", 1)[1]: e.as_dict() for n, e in self.estimates.items() if n.startswith(effect + ".")}
+        for f, d in self.per_test.items():
+            if f.startswith(effect + "."):
+                out[f.split(".", 1)[1]] = self._per_test_dict(f)
+        return out
+
+    def _per_test_dict(self, family: str) -> dict:
+        d = self.per_test[family]
+        return {"per_test": {t: {"value": float(v), "stderr": float(s)}
+                             for t, v, s in zip(self.data.tests, d["values"], d["stderr"])}, "unit": d["unit"]}
+
+    def correlation_dict(self) -> dict:
+        """{"names": [...], "matrix": [[...]]} of the fitted global parameters."""
+        if self.correlation is None:
+            return {"names": [], "matrix": []}
+        return {"names": list(self.names), "matrix": np.round(self.correlation, 4).tolist()}
+
+    def statistics(self) -> dict:
+        """Everything the reports need beyond the parameters: per-test values, correlations, dofs."""
+        return {"per_test": {f: self._per_test_dict(f) for f in self.per_test},
+                "correlation": self.correlation_dict(), "effective_parameters": self.effective_parameters,
+                "variance_factor": self.variance_factor}
 
     def report(self) -> str:
         """lmfit-style text report."""
@@ -110,111 +147,144 @@ class FitResult:
         from rollaway.display import fit_html
         return fit_html(self)
 
-
-def _stage(model: BenchModel, names: list[str], fixed: dict, start: dict, residual_fn, info: dict | None = None):
-    """One least-squares stage over *names*; returns values, stderr, rss, n.
-
-    *info* (a dict) receives the fit diagnostics: initial values, number of evaluations,
-    convergence status and message, and the parameters' correlation matrix.
-    """
-    if not names:
-        r = residual_fn(dict(fixed))
-        return {}, {}, float(r @ r), r.size
-    lo = np.array([model.bounds(n)[0] for n in names])
-    hi = np.array([model.bounds(n)[1] for n in names])
-    x0 = np.clip(np.array([start[n] for n in names], float), lo, hi)
-    x0 = np.where(x0 <= lo, lo + 1e-6 * (hi - lo), np.where(x0 >= hi, hi - 1e-6 * (hi - lo), x0))
-    scale = np.maximum(np.abs(x0), 1e-3 * (hi - lo))
-
-    def fun(z):
-        vals = dict(fixed)
-        vals.update(zip(names, z * scale))
-        return residual_fn(vals)
-
-    res = optimize.least_squares(fun, x0 / scale, bounds=(lo / scale, hi / scale), method="trf",
-                                 x_scale=1.0, xtol=1e-10, ftol=1e-10, gtol=1e-10, max_nfev=200 * len(names))
-    x = res.x * scale
-    r = res.fun
-    rss, n = float(r @ r), r.size
-    jac = res.jac / scale
-    dof = max(n - len(names), 1)
-    try:
-        cov = np.linalg.pinv(jac.T @ jac) * rss / dof
-        se = np.sqrt(np.clip(np.diag(cov), 0, None))
-    except np.linalg.LinAlgError:
-        cov, se = None, np.full(len(names), np.nan)
-    if info is not None:
-        with np.errstate(divide="ignore", invalid="ignore"):
-            corr = None if cov is None else cov / np.outer(se, se)
-        info.update(names=list(names), initial=dict(zip(names, (x0 * 1.0).tolist())), nfev=int(res.nfev),
-                    success=bool(res.success), status=int(res.status), message=str(res.message),
-                    n=int(n), rss=rss, correlation=None if corr is None else corr.tolist())
-    return dict(zip(names, x)), dict(zip(names, se)), rss, n
+def _noise_weights(data: Measurements, model: BenchModel, values: dict) -> tuple[np.ndarray, np.ndarray]:
+    """1/σ per sample for both channels: the noise model attached to *data*, else estimated from it."""
+    sq, st = data.torque_sigma_Nm, data.temp_sigma_C
+    if sq is None or st is None:
+        from rollaway.identify.noise import noise_estimate
+        tau = model.state(data, values).cooling_time_constant_s
+        if sq is None:
+            nq = noise_estimate(data, data.torque_Nm, tau, relative=True)
+            sq = nq.at(data.torque_Nm) if nq else np.full(len(data), max(float(np.std(data.torque_Nm)), 1e-6))
+        if st is None:
+            nt = noise_estimate(data, data.drum_temp_C, tau)
+            st = nt.at(data.drum_temp_C) if nt else np.full(len(data), 1.0)
+    return 1.0 / np.maximum(np.broadcast_to(st, (len(data),)), 1e-9), \
+        1.0 / np.maximum(np.broadcast_to(sq, (len(data),)), 1e-9)
 
 
+@single_blas_thread
 def calibrate(data: Measurements, effects=(), params=None, *, free=None, start: dict | None = None,
-              model: BenchModel | None = None) -> FitResult:
-    """Fit μ_d, h and every parameter of *effects* to *data*; return a :class:`FitResult`.
+              model: BenchModel | None = None, per_test: bool = True, statistics: bool = True) -> FitResult:
+    """Fit μ_d, h, every parameter of *effects* and each test's T_0 to *data* (both channels jointly).
 
-    *free* restricts the fitted names (others stay at *start*/neutral); *start* gives
-    starting values (defaults: the set's μ_d and h, each effect parameter's ``initial``).
+    *free* restricts the fitted global names (others stay at *start*/neutral); *start* gives
+    starting values (defaults: the set's μ_d and h, each effect parameter's ``initial``; per-test
+    values as arrays in ``data.tests`` order).  With ``per_test=False`` the T_0 readings are
+    taken as exact (the old behaviour, for comparisons only).  Samples are weighted by the noise
+    model attached to *data* (``torque_sigma_Nm``, ``temp_sigma_C``) or one estimated from it.
     """
     model = model or BenchModel(params, effects)
-    values = model.neutral_values()
-    init = dict(values)
-    for e in model.effects:
-        init.update({f"{e.name}.{p.name}": p.initial for p in e.parameters})
-    init.update(start or {})
+    init = model.initial_values()
+    families = model.per_test_parameters() if per_test else []
+    init[INITIAL_TEMP] = data.test_initial_temp_C.copy()
+    for f in families[1:]:
+        init[f] = np.full(data.n_tests, model.drum.effect(f.split(".")[0]).parameter(f.split(".", 1)[1]).initial)
+    for k, v in (start or {}).items():
+        if k in families and np.ndim(v) == 0:
+            continue            # a scalar start for a per-test family: keep the per-test starts
+        init[k] = v
     free = set(model.parameter_names() if free is None else free)
-    temp_names = [n for n in model.temperature_parameters() if n in free]
-    torque_names = [n for n in model.torque_parameters() if n in free]
-    fixed = {n: init[n] if n in free else (start or {}).get(n, values[n]) for n in model.parameter_names()}
-    hot = data.time_s > 0
+    names = [n for n in model.parameter_names() if n in free]
+    neutral = model.neutral_values()
+    values = {n: (init[n] if n in free else (start or {}).get(n, neutral[n])) for n in model.parameter_names()}
+    values.update({f: init[f] for f in families})
+    if not per_test:
+        values[INITIAL_TEMP] = None
+    w_t, w_q = _noise_weights(data, model, values)
+    prob = Problem(model, data, names, families, values, w_t, w_q)
+    sol = prob.solve(init, jacobian=statistics)
+    return _result(model, data, sol, prob, names, families, statistics)
 
-    def temp_res(vals):
-        return (model.drum_temperature(data, vals) - data.drum_temp_C)[hot]
 
-    info_t, info_q = {"channel": "temperature"}, {"channel": "torque"}
-    tv, tse, rss_t, n_t = _stage(model, temp_names, fixed, init, temp_res, info_t)
-    fixed.update(tv)
-    temp = model.drum_temperature(data, fixed)
-
-    w = 1.0 if data.torque_sigma_Nm is None else np.mean(data.torque_sigma_Nm) / data.torque_sigma_Nm
-
-    def torque_res(vals):   # weighted by 1/σ_i when a noise model is attached (WLS)
-        return (model.predict(data, vals, drum_temp_C=temp).torque_Nm - data.torque_Nm) * w
-
-    qv, qse, rss_q, n_q = _stage(model, torque_names, fixed, init, torque_res, info_q)
-    fixed.update(qv)
-    pred = model.predict(data, fixed, drum_temp_C=temp)
-    estimates, warnings = {}, []
-    for names, se, n in ((temp_names, tse, n_t), (torque_names, qse, n_q)):
-        tcrit = stats.t.ppf(0.975, max(n - len(names), 1))
+def _result(model, data, sol, prob, names, families, statistics=True) -> FitResult:
+    vals = sol.values
+    pred = model.predict(data, vals)
+    n = len(data)
+    r = sol.residual
+    rt_w, rq_w = r[:n], r[n:]
+    # leverages: per-test families (block diagonal) + projected globals → effective parameters per channel
+    lev = np.zeros(2 * n)
+    if families and sol.local_normal is not None and statistics:
+        gm = np.stack(sol.local_grad, axis=1)
+        inv = np.linalg.pinv(sol.local_normal)
+        lev += np.einsum("ia,iab,ib->i", gm, inv[prob.rows_test], gm)
+    jac = sol.jac
+    if names and jac is not None and jac.size:
+        lev += np.einsum("ia,ab,ib->i", jac, np.linalg.pinv(jac.T @ jac), jac)
+    p_t, p_q = float(lev[:n].sum()), float(lev[n:].sum())
+    dof_t, dof_q = max(n - p_t, 1.0), max(n - p_q, 1.0)
+    phi_t, phi_q = float(rt_w @ rt_w) / dof_t, float(rq_w @ rq_w) / dof_q
+    estimates, warnings, corr = {}, [], None
+    if names and jac is None:
         for name in names:
             lo, hi = model.bounds(name)
-            v = fixed[name]
+            estimates[name] = ParameterEstimate(name, float(vals[name]), model.unit(name), math.nan, (lo, hi), lo, hi)
+    elif names:
+        rowscale = np.concatenate([np.full(n, 1 / np.sqrt(max(phi_t, 1e-300))),
+                                   np.full(n, 1 / np.sqrt(max(phi_q, 1e-300)))])
+        cov = _covariance(jac * rowscale[:, None]) * np.outer(sol.scale, sol.scale)
+        se = np.sqrt(np.clip(np.diag(cov), 0, None))
+        with np.errstate(invalid="ignore", divide="ignore"):
+            corr = cov / np.outer(se, se)
+        tcrit = stats.t.ppf(0.975, max(2 * n - p_t - p_q, 1))
+        for i, name in enumerate(names):
+            lo, hi = model.bounds(name)
+            v = float(vals[name])
             tol = 1e-4 * (hi - lo)
             at = "lower" if v - lo <= tol else "upper" if hi - v <= tol else ""
-            s = float(se[name])
-            estimates[name] = ParameterEstimate(name, float(v), model.unit(name), s,
-                                                (float(v - tcrit * s), float(v + tcrit * s)), lo, hi, at)
-            if at:
+            s = float(se[i])
+            ci = (max(lo, v - tcrit * s), min(hi, v + tcrit * s)) if np.isfinite(s) else (lo, hi)
+            estimates[name] = ParameterEstimate(name, v, model.unit(name), s, ci, lo, hi, at)
+            if at and not _neutral_bound(model, name, v):
                 warnings.append(f"{name} = {v:.4g} is stuck at its {at} bound "
                                 f"({lo if at == 'lower' else hi:g} {model.unit(name)}); the data push it out of "
                                 f"the physical range or the effect is absent — its interval is not meaningful")
+    per_test = {}
+    if families and sol.local_normal is not None and statistics:
+        scaled = sol.local_normal / np.where(np.arange(2 * n) < n, phi_t, phi_q).mean()
+        inv = np.linalg.pinv(scaled)
+        for a, f in enumerate(families):
+            per_test[f] = {"values": np.asarray(vals[f], float), "stderr": np.sqrt(np.clip(inv[:, a, a], 0, None)),
+                           "unit": model.unit(f)}
+    rt = data.drum_temp_C - pred.drum_temp_C
     rq = data.torque_Nm - pred.torque_Nm
-    return FitResult(model, data, fixed, estimates, pred, rss_t, float(rq @ rq), n_t, n_q, warnings, rss_q,
-                     {"stages": [i for i in (info_t, info_q) if "names" in i]})
+    return FitResult(model, data, vals, estimates, pred, float(rt @ rt), float(rq @ rq), n, n, warnings,
+                     float(rq_w @ rq_w), float(rt_w @ rt_w), per_test, corr, names,
+                     {"temperature": p_t, "torque": p_q}, {"temperature": phi_t, "torque": phi_q},
+                     n_per_test=sum(data.n_tests for f in families if f != INITIAL_TEMP),
+                     fit_info={"stages": [{"channel": "joint (temperature + torque)", "names": list(names),
+                                           "correlation": None if corr is None else np.asarray(corr).tolist(),
+                                           "nfev": int(getattr(sol, "nfev", 0)), "success": True}]})
+
+
+def _neutral_bound(model, name, v) -> bool:
+    """An effect parameter resting on its neutral bound (the effect switched off) is not a warning."""
+    if "." not in name:
+        return False
+    eff, par = name.split(".", 1)
+    return model.drum.effect(eff).parameter(par).neutral == v or abs(model.drum.effect(eff).parameter(par).neutral - v) <= \
+        1e-4 * (model.bounds(name)[1] - model.bounds(name)[0])
+
+
+def _covariance(jac: np.ndarray) -> np.ndarray:
+    """(JᵀJ)⁻¹ in scaled variables via eigen-decomposition; directions the data do not determine get ∞."""
+    a = jac.T @ jac
+    w, v = np.linalg.eigh(a)
+    good = w > max(float(w.max()), 1e-300) * 1e-12
+    inv_w = np.where(good, 1.0 / np.where(good, w, 1.0), np.inf)
+    with np.errstate(invalid="ignore"):
+        cov = (v * inv_w) @ v.T
+    bad = ~good
+    if np.any(bad):   # a parameter that loads on an undetermined direction has no finite error
+        loads = np.abs(v[:, bad]).max(axis=1) > 1e-6
+        cov = np.where(np.outer(loads, loads), np.inf, (v[:, good] / w[good]) @ v[:, good].T)
+    return cov
 
 
 def evaluate(data: Measurements, effects=(), params=None, values: dict | None = None) -> FitResult:
-    """The model at given values (no fitting), wrapped as a FitResult (k = 0)."""
+    """The model at given values (no physical parameter fitted; each test's T_0 estimated), k = 0."""
     model = BenchModel(params, effects)
     vals = {**model.neutral_values(), **(values or {})}
-    pred = model.predict(data, vals)
-    hot = data.time_s > 0
-    rt = (data.drum_temp_C - pred.drum_temp_C)[hot]
-    rq = data.torque_Nm - pred.torque_Nm
-    w = 1.0 if data.torque_sigma_Nm is None else np.mean(data.torque_sigma_Nm) / data.torque_sigma_Nm
-    return FitResult(model, data, vals, {}, pred, float(rt @ rt), float(rq @ rq), int(hot.sum()), rq.size, [],
-                     float(((rq * w) ** 2).sum()))
+    fit = calibrate(data, (), params, free=[], start=vals, model=model)
+    return fit

@@ -1,34 +1,42 @@
-"""Which physical effect is the model missing?  Calibrate, fit each candidate, rank, decide.
+"""Which physical effects is the model missing?  Calibrate, select forward, cross-validate, decide.
 
-1. Calibrate the baseline (μ_d, h).  Estimate the noise of each channel without the physics
-   (:func:`rollaway.identify.residuals.noise_estimate`).
-2. Fit every candidate effect jointly with μ_d and h; rank by BIC (both channels).
-3. Candidates with ΔBIC < −10 against the baseline are cross-validated leave-one-test-out:
-   each test is predicted by a model calibrated on the others; the candidate must predict
-   the held-out tests better than the baseline does.
-4. The verdict is the best candidate that passes both — *and* leaves no structure in the
-   residual.  If it leaves structure, the tool says none of the catalogue explains the data
-   (verdict ``none``, ``remaining_structure: true``).  Without a passing candidate the verdict
-   is ``none``; ``remaining_structure`` then says whether the baseline residual is structured.
+1. Noise of each channel without the physics (:mod:`rollaway.identify.noise`), or the
+   instrument's figures; every fit weights the samples by it.  Each test's T_0 is a
+   nuisance parameter of every fit (never the t = 0 reading taken as exact).
+2. Forward selection: fit every remaining candidate jointly with the current model (the
+   calibrated baseline first); rank by ΔBIC; candidates with ΔBIC < −10 are cross-validated
+   K-fold by test (each held-out test predicted by a model calibrated on the others, only its
+   own T_0 and per-test values fitted to it); the best one that predicts held-out tests
+   better is added.  Stop when none passes or the residual holds no structure.
+3. If structure remains, the selected effect whose catalogue form explains most of the
+   baseline's excess error is refitted in a flexible form (a linear spline of its hook,
+   :mod:`rollaway.identify.shape`); if that clears the structure the effect is named with
+   ``form: "partial"`` and the shape the data want is returned.  Otherwise nothing is
+   claimed: verdict ``none`` with ``remaining_structure: true`` (an effect outside the
+   catalogue remains).
 """
 from __future__ import annotations
 
 import json
-import math
 from dataclasses import dataclass, field
 
 import numpy as np
 
-from rollaway.jsonsafe import to_jsonable
-
-from rollaway.identify.calibrate import FitResult, calibrate, evaluate
 from rollaway.effects import available_effects, get_effect
+from rollaway.identify.calibrate import FitResult, calibrate, evaluate
+from rollaway.identify.fitting import single_blas_thread
 from rollaway.identify.measurements import Measurements
-from rollaway.identify.residuals import Noise, association, noise_estimate, structure_tests, trend_words
+from rollaway.identify.noise import Noise, noise_estimate
+from rollaway.identify.residuals import association, structure_tests, trend_words
+from rollaway.jsonsafe import to_jsonable
 
 BIC_THRESHOLD = -10.0        # "very strong" evidence (Kass & Raftery 1995)
 INDISTINGUISHABLE_BIC = 6.0  # candidates within this ΔBIC of the best cannot be told apart
-CV_TOP = 4                   # cross-validate at most this many candidates
+CV_TOP = 3                   # cross-validate at most this many candidates per step
+MAX_EFFECTS = 3              # forward selection stops after this many effects
+LOO_TESTS = 10               # K-fold by test: leave-one-test-out up to 10 tests, else FOLDS folds
+FOLDS = 5
+PARTIAL_SHARE = 0.5          # "explains most of the baseline's excess error"
 
 
 @dataclass
@@ -37,13 +45,14 @@ class Candidate:
     fit: FitResult
     delta_bic: float
     delta_aic: float
-    cv_score: float | None = None       # Σ over held-out tests of SSE/σ², both channels
+    cv_score: float | None = None       # Σ over held-out tests of Σ (residual/σ)², both channels
     cv_better_tests: int | None = None
+    step: int = 1                       # forward-selection step in which it was tried
 
     def as_dict(self) -> dict:
         return {"effect": self.effect, "rmse_torque_Nm": self.fit.rmse_torque_Nm, "rmse_temp_C": self.fit.rmse_temp_C,
                 "delta_bic": self.delta_bic, "delta_aic": self.delta_aic, "bic": self.fit.bic,
-                "cv_score": self.cv_score, "cv_better_tests": self.cv_better_tests,
+                "cv_score": self.cv_score, "cv_better_tests": self.cv_better_tests, "step": self.step,
                 "parameters": self.fit.effect_parameters(self.effect), "warnings": self.fit.warnings}
 
 
@@ -54,7 +63,7 @@ class Diagnosis:
     baseline: FitResult
     noise_torque: Noise
     noise_temp: Noise
-    candidates: list[Candidate]
+    candidates: list[Candidate]          # first selection step (against the baseline), best first
     verdict: str
     indistinguishable_from: list[str]
     refined: FitResult
@@ -62,20 +71,25 @@ class Diagnosis:
     structure: dict
     baseline_cv: float | None
     evidence: list[str] = field(default_factory=list)
+    effects: list[dict] = field(default_factory=list)     # selected, in order: {"effect", "form", ...}
+    steps: list[dict] = field(default_factory=list)       # forward-selection log
+    shape: dict | None = None                              # flexible form of a "partial" effect
 
     def as_dict(self) -> dict:
         def rm(f):
             return {"rmse_torque_Nm": f.rmse_torque_Nm, "rmse_temp_C": f.rmse_temp_C, "bic": f.bic, "aic": f.aic,
-                    "parameters": {k: e.as_dict() for k, e in f.estimates.items()}}
+                    "parameters": {k: e.as_dict() for k, e in f.estimates.items()}, **f.statistics()}
         return {"data": {"source": self.data.source, "samples": len(self.data), "tests": self.data.n_tests},
-                "noise": {"torque_Nm": self.noise_torque.sigma, "temp_C": self.noise_temp.sigma},
+                "noise": {"torque_Nm": self.noise_torque.sigma, "temp_C": self.noise_temp.sigma,
+                          "torque": self.noise_torque.as_dict(), "temperature": self.noise_temp.as_dict()},
                 "paper": {"rmse_torque_Nm": self.paper.rmse_torque_Nm, "rmse_temp_C": self.paper.rmse_temp_C},
                 "baseline": {**rm(self.baseline), "cv_score": self.baseline_cv},
                 "candidates": [c.as_dict() for c in self.candidates],
-                "verdict": self.verdict, "indistinguishable_from": self.indistinguishable_from,
+                "verdict": self.verdict, "effects": self.effects,
+                "indistinguishable_from": self.indistinguishable_from,
                 "refined": {"effects": self.refined.effects, **rm(self.refined)},
                 "remaining_structure": self.remaining_structure, "structure": self.structure,
-                "evidence": self.evidence}
+                "steps": self.steps, "shape": self.shape, "evidence": self.evidence}
 
     def to_json(self, path=None) -> str:
         text = json.dumps(to_jsonable(self.as_dict()), indent=2)
@@ -85,10 +99,12 @@ class Diagnosis:
         return text
 
     def summary(self) -> str:
-        lines = [f"verdict: {self.verdict}"]
+        forms = ", ".join(f"{e['effect']} ({e['form']})" for e in self.effects)
+        lines = [f"verdict: {self.verdict}" + (f"   effects: {forms}" if len(self.effects) > 1 or
+                                                any(e["form"] != "exact" for e in self.effects) else "")]
         lines += [f"  {w}" for w in self.evidence]
         lines.append("")
-        lines.append(f"{'candidate':<28}{'ΔBIC':>9}{'torque RMSE':>13}{'temp RMSE':>11}{'CV score':>10}")
+        lines.append(f"{'candidate (step 1)':<28}{'ΔBIC':>9}{'torque RMSE':>13}{'temp RMSE':>11}{'CV score':>10}")
         lines.append(f"{'(baseline)':<28}{0.0:>9.1f}{self.baseline.rmse_torque_Nm:>13.3g}"
                      f"{self.baseline.rmse_temp_C:>11.3g}{_f(self.baseline_cv):>10}")
         for c in self.candidates:
@@ -114,123 +130,307 @@ def _f(x):
     return "–" if x is None else f"{x:.1f}"
 
 
-def channel_noise(data: Measurements, fit: FitResult) -> tuple[Noise, Noise]:
+# -- noise ----------------------------------------------------------------------------------
+def channel_noise(data: Measurements, fit: FitResult, noise_torque_Nm=None, noise_temp_C=None) -> tuple[Noise, Noise]:
+    """Noise of both channels: the instrument's figures where given, else the model-free estimate."""
     tau = fit.model.state(data, fit.values).cooling_time_constant_s
-    nq = (noise_estimate(data, data.torque_Nm, tau, relative=True)
-          or Noise(max(fit.rmse_torque_Nm, 1e-9), max(fit.n_torque - 2, 1), max(fit.rmse_torque_Nm, 1e-9)))
-    nt = noise_estimate(data, data.drum_temp_C, tau) or Noise(max(fit.rmse_temp_C, 1e-9), max(fit.n_temp - 1, 1))
+    nq = Noise.instrument(noise_torque_Nm) if noise_torque_Nm else noise_estimate(data, data.torque_Nm, tau, True)
+    nt = Noise.instrument(noise_temp_C) if noise_temp_C else noise_estimate(data, data.drum_temp_C, tau)
     return nq, nt
 
 
+def _noise_words(name: str, n: Noise, unit: str, option: str) -> str:
+    if n.source == "instrument":
+        return f"{name} σ = {n.sigma:.3g} {unit} (instrument figure, {option})"
+    rel = f" = √({n.absolute:.3g}² + ({n.relative:.2%}·{name})²)" if n.relative > 0 else ""
+    text = f"{name} σ ≈ {n.sigma:.3g} {unit}{rel} (local degree-{n.degree} pseudo-residuals, {n.dof:.0f} dof)"
+    if not n.reliable:
+        text += (f" — NOT RELIABLE: {n.note}; the structure checks may miss remaining structure — give the "
+                 f"instrument's figure with {option}")
+    return text
+
+
+# -- structure ------------------------------------------------------------------------------
 def structure(fit: FitResult, nq: Noise, nt: Noise) -> dict:
     rt, rq = fit.residuals()
-    hot = fit.data.time_s > 0
-    kq, kt = len(fit.model.torque_parameters()), len(fit.model.temperature_parameters())
+    kq = fit.effective_parameters.get("torque", len(fit.model.torque_parameters()))
+    kt = fit.effective_parameters.get("temperature", len(fit.model.temperature_parameters()))
     out = {"torque": structure_tests(fit.data, rq, nq, kq, sigma=fit.data.torque_sigma_Nm),
-           "temperature": structure_tests(fit.data, rt, nt, kt, hot)}
+           "temperature": structure_tests(fit.data, rt, nt, kt, sigma=fit.data.temp_sigma_C)}
     out["structured"] = out["torque"]["structured"] or out["temperature"]["structured"]
     return out
 
 
-def cv_score(data: Measurements, effects, params, nq: Noise, nt: Noise, start: dict) -> np.ndarray:
-    """Leave-one-test-out: per held-out test, SSE/σ² of both channels under a model fitted to the rest."""
+def _chi2(fit: FitResult) -> float:
+    return float((fit.rss_torque_weighted or 0.0) + (fit.rss_temp_weighted or 0.0))
+
+
+# -- cross-validation -----------------------------------------------------------------------
+def folds(n_tests: int) -> list[np.ndarray]:
+    """Test indices of each held-out fold: one test each up to LOO_TESTS tests, else FOLDS folds."""
+    k = n_tests if n_tests <= LOO_TESTS else FOLDS
+    return [np.arange(i, n_tests, k) for i in range(k)]
+
+
+def _restrict(values: dict, families: list[str], keep: np.ndarray) -> dict:
+    out = dict(values)
+    for f in families:
+        if f in out and np.ndim(out[f]) == 1:
+            out[f] = np.asarray(out[f])[keep]
+    return out
+
+
+def cv_score(data: Measurements, effects, params, start: FitResult) -> np.ndarray:
+    """K-fold by test: per held-out test, Σ (residual/σ)² of both channels under a model calibrated
+    on the other folds (warm-started at *start*); only the held-out test's own T_0 and per-test
+    values are fitted to it."""
     scores = np.zeros(data.n_tests)
-    for i in range(data.n_tests):
-        train, test = data.subset(data.test_index != i), data.subset(data.test_index == i)
-        fit = calibrate(train, effects, params, start=start)
-        pred = fit.model.predict(test, fit.values)
-        hot = test.time_s > 0
-        sig = nq.sigma if test.torque_sigma_Nm is None else test.torque_sigma_Nm
-        scores[i] = (float((((test.torque_Nm - pred.torque_Nm) / sig) ** 2).sum())
-                     + float(((test.drum_temp_C - pred.drum_temp_C)[hot] ** 2).sum()) / nt.sigma ** 2)
+    fams = start.model.per_test_parameters()
+    glob = start.model.parameter_names()
+    for held in folds(data.n_tests):
+        out = np.isin(data.test_index, held)
+        keep = np.setdiff1d(np.arange(data.n_tests), held)
+        train, test = data.subset(~out), data.subset(out)
+        fit = calibrate(train, effects, params, start=_restrict(start.values, fams, keep), statistics=False)
+        vals = {n: fit.values[n] for n in glob}
+        vals.update(_restrict(start.values, fams, np.asarray(held)))
+        pred = calibrate(test, effects, params, free=[], start=vals, statistics=False)
+        r = np.concatenate([(test.drum_temp_C - pred.prediction.drum_temp_C) / test.temp_sigma_C,
+                            (test.torque_Nm - pred.prediction.torque_Nm) / test.torque_sigma_Nm])
+        scores[np.asarray(held)] = np.bincount(np.concatenate([test.test_index, test.test_index]), r * r,
+                                               test.n_tests)
     return scores
 
 
-def _describe_residual(fit: FitResult, noise: Noise, channel: str) -> str:
-    rt, rq = fit.residuals()
-    r, unit, mask = (rq, "N·m", None) if channel == "torque" else (rt, "°C", fit.data.time_s > 0)
-    assoc = association(fit.data, r, fit.prediction.drum_temp_C, mask)
-    name, share = assoc[0]
-    words = trend_words(fit.data, r, fit.prediction.drum_temp_C, name, mask)
-    return (f"the {channel} residual followed {name} most ({share:.0%} of its variance explained by {name} "
-            f"alone; it {words})")
+# -- the decision ---------------------------------------------------------------------------
+def _step(data, params, names, current: FitResult, chosen: list[str], step: int):
+    """Fit every remaining candidate on top of *current*; cross-validate the strong ones."""
+    start = {k: v for k, v in current.values.items()}
+    cands = []
+    for name in names:
+        if name in chosen:
+            continue
+        fit = calibrate(data, chosen + [name], params, start=start)
+        cands.append(Candidate(name, fit, fit.bic - current.bic, fit.aic - current.aic, step=step))
+    cands.sort(key=lambda c: c.delta_bic)
+    strong = [c for c in cands if c.delta_bic < BIC_THRESHOLD][:CV_TOP]
+    cur_cv = None
+    if strong:
+        cur_scores = cv_score(data, chosen, params, current)
+        cur_cv = float(cur_scores.sum())
+        for c in strong:
+            s = cv_score(data, chosen + [c.effect], params, c.fit)
+            c.cv_score = float(s.sum())
+            c.cv_better_tests = int((s < cur_scores).sum())
+    passing = [c for c in strong if c.cv_score is not None and c.cv_score < cur_cv]
+    return cands, strong, passing, cur_cv
 
 
-def diagnose(data: Measurements, params=None, effects=None) -> Diagnosis:
-    """Rank *effects* (default: the whole catalogue plus registered plugins) against *data*."""
+@single_blas_thread
+def diagnose(data: Measurements, params=None, effects=None, *, noise_torque_Nm: float | None = None,
+             noise_temp_C: float | None = None, max_effects: int = MAX_EFFECTS) -> Diagnosis:
+    """Select effects from *effects* (default: the catalogue plus registered plugins) for *data*.
+
+    *noise_torque_Nm*, *noise_temp_C*: the instrument's noise figures (σ), used instead of the
+    estimate from the data.
+    """
     names = list(available_effects()) if effects is None else [get_effect(e).name for e in effects]
     data = data.subset(np.ones(len(data), bool))          # a copy that carries the noise model
     first = calibrate(data, (), params)
-    nq, nt = channel_noise(data, first)
-    data.torque_sigma_Nm = np.maximum(nq.at(first.prediction.torque_Nm), 1e-9)
+    nq, nt = channel_noise(data, first, noise_torque_Nm, noise_temp_C)
+    data.torque_sigma_Nm = np.maximum(nq.at(data.torque_Nm), 1e-9)
+    data.temp_sigma_C = np.maximum(nt.at(data.drum_temp_C), 1e-9)
     paper = evaluate(data, (), params)
     base = calibrate(data, (), params, start=first.values)
-    start = {"mu_drum": base.values["mu_drum"], "heat_transfer_W_m2K": base.values["heat_transfer_W_m2K"]}
-    cands = []
-    for name in names:
-        fit = calibrate(data, [name], params, start=start)
-        cands.append(Candidate(name, fit, fit.bic - base.bic, fit.aic - base.aic))
-    cands.sort(key=lambda c: c.delta_bic)
-    strong = [c for c in cands if c.delta_bic < BIC_THRESHOLD][:CV_TOP]
-    base_cv = None
-    if strong:
-        base_scores = cv_score(data, (), params, nq, nt, start)
-        base_cv = float(base_scores.sum())
-        for c in strong:
-            s = cv_score(data, [c.effect], params, nq, nt, {**start, **c.fit.values})
-            c.cv_score = float(s.sum())
-            c.cv_better_tests = int((s < base_scores).sum())
-    passing = [c for c in strong if c.cv_score is not None and c.cv_score < base_cv]
     base_struct = structure(base, nq, nt)
-    ev = [f"Noise level (per-test smooth curves, no physics): torque σ ≈ {nq.sigma:.3g} N·m (√({nq.absolute:.3g}² + "
-          f"({nq.relative:.2%}·torque)²)), drum temperature σ ≈ {nt.sigma:.3g} °C.",
+    ev = [f"Noise: {_noise_words('torque', nq, 'N·m', '--noise-torque-Nm')}; "
+          f"{_noise_words('drum temperature', nt, '°C', '--noise-temp-C')}.",
+          f"Each test's start temperature T_0 is fitted with the rest (t = 0 readings are measurements, "
+          f"not exact values).",
           f"Paper defaults: torque RMSE {paper.rmse_torque_Nm:.3g} N·m, temperature RMSE {paper.rmse_temp_C:.3g} °C. "
           f"Calibrated baseline (μ_d = {base.values['mu_drum']:.4g}, h = {base.values['heat_transfer_W_m2K']:.4g} "
           f"W/(m² K)): {base.rmse_torque_Nm:.3g} N·m and {base.rmse_temp_C:.3g} °C; "
-          + _describe_residual(base, nq, "torque") + "; " + _describe_residual(base, nt, "temperature") + "."]
-    verdict, indist, refined, remaining, struct = "none", [], base, base_struct["structured"], base_struct
-    if passing:
+          + _describe_residual(base, "torque") + "; " + _describe_residual(base, "temperature") + "."]
+    current, chosen, steps, fits = base, [], [], []
+    first_cands, base_cv, indist, struct = [], None, [], base_struct
+    for step in range(1, max_effects + 1):
+        cands, strong, passing, cur_cv = _step(data, params, names, current, chosen, step)
+        if step == 1:
+            first_cands, base_cv = cands, cur_cv
+        if not passing:
+            steps.append({"step": step, "added": None, "best": cands[0].effect if cands else None,
+                          "delta_bic": cands[0].delta_bic if cands else None,
+                          "cv_score": strong[0].cv_score if strong else None, "current_cv": cur_cv})
+            if step == 1:
+                ev.append(_no_candidate_words(cands, strong, cur_cv))
+            break
         best = passing[0]
-        best_struct = structure(best.fit, nq, nt)
-        effect = get_effect(best.effect)
-        ev.append(f"Adding {best.effect} lowers BIC by {-best.delta_bic:.1f} (threshold {-BIC_THRESHOLD:g}); torque RMSE "
-                  f"{base.rmse_torque_Nm:.3g} → {best.fit.rmse_torque_Nm:.3g} N·m, temperature RMSE "
-                  f"{base.rmse_temp_C:.3g} → {best.fit.rmse_temp_C:.3g} °C; leave-one-test-out error "
-                  f"{base_cv:.1f} → {best.cv_score:.1f} (better in {best.cv_better_tests} of {data.n_tests} held-out "
-                  f"tests).  Its expected signature: {effect.signature}.")
-        others = [c for c in cands if c is not best and c.delta_bic - best.delta_bic < INDISTINGUISHABLE_BIC
-                  and c.delta_bic < BIC_THRESHOLD]
-        if best_struct["structured"]:
-            verdict, remaining, struct, refined = "none", True, best_struct, best.fit
-            ev.append(f"But the residual of baseline + {best.effect} is still structured "
-                      f"({_structure_words(best_struct)}): none of the catalogue explains the data; "
-                      f"{best.effect} explains only part of it.  An effect outside the catalogue (or several "
-                      f"together) remains — write it as a plugin and refit.")
-        else:
-            verdict, indist, refined, remaining, struct = best.effect, [c.effect for c in others], best.fit, False, \
-                best_struct
-            if others:
-                ev.append("Indistinguishable on these data (within ΔBIC " + f"{INDISTINGUISHABLE_BIC:g}): "
-                          + ", ".join(f"{c.effect} (ΔBIC {c.delta_bic - best.delta_bic:+.1f} vs best)" for c in others)
-                          + "; more tests (other T_0, hand forces, longer holds) would separate them.")
-            elif len(cands) > 1:
-                ru = next(c for c in cands if c is not best)
-                ev.append(f"Runner-up {ru.effect} is {ru.delta_bic - best.delta_bic:.1f} BIC worse: clearly separated.")
-            ev.append(f"The refined residual is consistent with noise ({_structure_words(best_struct)}).")
+        if step == 1:
+            indist = [c.effect for c in cands if c is not best and c.delta_bic - best.delta_bic < INDISTINGUISHABLE_BIC
+                      and c.delta_bic < BIC_THRESHOLD]
+        chosen.append(best.effect)
+        struct = structure(best.fit, nq, nt)
+        steps.append({"step": step, "added": best.effect, "delta_bic": best.delta_bic, "cv_score": best.cv_score,
+                      "current_cv": cur_cv, "cv_better_tests": best.cv_better_tests,
+                      "structured": struct["structured"]})
+        ev.append(f"Step {step}: adding {best.effect} lowers BIC by {-best.delta_bic:.1f} (threshold "
+                  f"{-BIC_THRESHOLD:g}); torque RMSE {current.rmse_torque_Nm:.3g} → {best.fit.rmse_torque_Nm:.3g} N·m, "
+                  f"temperature RMSE {current.rmse_temp_C:.3g} → {best.fit.rmse_temp_C:.3g} °C; held-out error "
+                  f"{cur_cv:.1f} → {best.cv_score:.1f} (better in {best.cv_better_tests} of {data.n_tests} tests).  "
+                  f"Expected signature: {get_effect(best.effect).signature}.")
+        current = best.fit
+        fits.append(current)
+        if not struct["structured"]:
+            break
+    if len(chosen) >= 2:
+        chosen, current, struct, swaps = _exchange(data, params, names, chosen, current, struct, nq, nt)
+        chosen, current, struct, removed = _eliminate(data, params, chosen, current, struct, nq, nt)
+        swaps += [(a, "nothing", d) for a, d in removed]
+        if swaps:
+            fits = [None] * (len(chosen) - 1) + [current]
+            steps.append({"step": "exchange", "swaps": swaps})
+            ev.append("Exchange step: " + "; ".join(f"{a} replaced by {b} (BIC {d:+.1f})" for a, b, d in swaps)
+                      + " — an effect picked early had absorbed part of a later one's signature.")
+    refined = current
+    selected = [{"effect": e, "form": "exact"} for e in chosen]
+    shape = None
+    if not chosen:
+        verdict, remaining, struct = "none", base_struct["structured"], base_struct
+        ev.append(f"The baseline residual is structured ({_structure_words(base_struct)}) but no catalogue effect "
+                  f"explains it: an unknown effect remains." if remaining else
+                  "The baseline residual is consistent with noise: no missing effect is detected.")
+    elif not struct["structured"]:
+        verdict, remaining = chosen[0], False
+        if indist:
+            ev.append(f"Indistinguishable on these data (within ΔBIC {INDISTINGUISHABLE_BIC:g}): " + ", ".join(indist)
+                      + "; more tests (other T_0, hand forces, longer holds) would separate them.")
+        ev.append(f"The refined residual is consistent with noise ({_structure_words(struct)}).")
     else:
-        if strong:
-            ev.append(f"{strong[0].effect} lowers BIC by {-strong[0].delta_bic:.1f} but does not predict held-out "
-                      f"tests better than the baseline (cross-validation {strong[0].cv_score:.1f} vs {base_cv:.1f}); "
-                      f"not accepted.")
+        remaining = True
+        part = None
+        for j in range(1, len(chosen) + 1):       # the fewest effects whose flexible form clears the residual
+            if fits[j - 1] is None:
+                continue
+            part = _partial(data, params, base, fits[j - 1], chosen[:j], nq, nt)
+            if part is not None:
+                break
+        if part is None:
+            verdict, selected, indist = "none", [], []
+            ev.append(f"But the residual of baseline + {' + '.join(chosen)} is still structured "
+                      f"({_structure_words(struct)}), and no flexible version of these effects removes it: none "
+                      f"of the catalogue explains the data.  An effect outside the catalogue remains — write it "
+                      f"as a plugin and refit.")
         else:
-            ev.append(f"No candidate lowers BIC by more than {-BIC_THRESHOLD:g} (best: {cands[0].effect}, "
-                      f"ΔBIC {cands[0].delta_bic:+.1f})." if cands else "No candidates were given.")
-        if base_struct["structured"]:
-            ev.append(f"The baseline residual is structured ({_structure_words(base_struct)}) but no catalogue "
-                      f"effect explains it: an unknown effect remains.")
-        else:
-            ev.append("The baseline residual is consistent with noise: no missing effect is detected.")
-    return Diagnosis(data, paper, base, nq, nt, cands, verdict, indist, refined, remaining, struct, base_cv, ev)
+            name, share, shape, flex_struct = part
+            shape["effect"] = name
+            refined = fits[j - 1]
+            struct = structure(refined, nq, nt)
+            dropped = chosen[j:]
+            selected = [{"effect": e, "form": "partial" if e == name else "exact"} for e in chosen[:j]]
+            for e in selected:
+                if e["effect"] == name:
+                    e["explained_share"] = share
+            verdict = chosen[0]
+            ev.append(f"{name} explains {share:.0%} of the baseline's excess error but its catalogue form leaves "
+                      f"structure ({_structure_words(struct)}); a flexible version of its {shape['hook']} hook "
+                      f"(linear spline in {shape['covariate']}) leaves none: form \"partial\" — the data want "
+                      f"the shape shown (write it as a plugin)."
+                      + (f"  {', '.join(dropped)} only absorbed part of this form mismatch and is not kept."
+                         if dropped else ""))
+    return Diagnosis(data, paper, base, nq, nt, first_cands, verdict, indist if verdict != "none" else [], refined,
+                     remaining, struct, base_cv, ev, selected, steps, shape)
+
+
+def _exchange(data, params, names, chosen, current, struct, nq, nt, rounds: int = 2):
+    """Stepwise exchange: replace a selected effect by an unselected one while BIC improves and the
+    residual stays as clean (forward selection can pick an effect that absorbs part of a later one)."""
+    swaps = []
+    for _ in range(rounds):
+        best = None
+        for i, old in enumerate(chosen):
+            for new in names:
+                if new in chosen:
+                    continue
+                trial = chosen[:i] + [new] + chosen[i + 1:]
+                fit = calibrate(data, trial, params, start=current.values, statistics=False)
+                if fit.bic < current.bic - 2.0 and (best is None or fit.bic < best[2].bic):
+                    best = (i, new, fit)
+        if best is None:
+            break
+        i, new, _ = best
+        trial = chosen[:i] + [new] + chosen[i + 1:]
+        fit = calibrate(data, trial, params, start=best[2].values)
+        s = structure(fit, nq, nt)
+        if s["structured"] and not struct["structured"]:
+            break
+        swaps.append((chosen[i], new, fit.bic - current.bic))
+        chosen, current, struct = trial, fit, s
+    return chosen, current, struct, swaps
+
+
+def _eliminate(data, params, chosen, current, struct, nq, nt):
+    """Backward elimination: drop a selected effect when the model without it has the lower BIC and a
+    residual as clean."""
+    removed = []
+    while len(chosen) >= 2:
+        trials = []
+        for i in range(len(chosen)):
+            rest = chosen[:i] + chosen[i + 1:]
+            trials.append((calibrate(data, rest, params, start=current.values), i))
+        fit, i = min(trials, key=lambda t: t[0].bic)
+        if fit.bic >= current.bic:
+            break
+        s = structure(fit, nq, nt)
+        if s["structured"] and not struct["structured"]:
+            break
+        removed.append((chosen[i], fit.bic - current.bic))
+        chosen, current, struct = chosen[:i] + chosen[i + 1:], fit, s
+    return chosen, current, struct, removed
+
+
+def _partial(data, params, base: FitResult, refined: FitResult, chosen: list[str], nq: Noise, nt: Noise):
+    """The selected effect whose form is only partly right: (name, share, shape, structure) or None."""
+    from rollaway.identify.shape import covariate_of, flexible_effect, shape_curves, shape_hook
+    excess = _chi2(base) - (2 * len(data) - sum(base.effective_parameters.values()))
+    if excess <= 0:
+        return None
+    share = (_chi2(base) - _chi2(refined)) / excess
+    if share < PARTIAL_SHARE:
+        return None
+    for name in chosen:
+        eff = get_effect(name)
+        found = shape_hook(eff)
+        if found is None:
+            continue
+        flex = flexible_effect(eff, covariate_of(refined, found[1]))
+        if flex is None:
+            continue
+        others = [c for c in chosen if c != name]
+        fit = calibrate(data, others + [flex], params, start=refined.values)
+        s = structure(fit, nq, nt)
+        if not s["structured"]:
+            return name, float(share), shape_curves(eff, refined, fit, flex), s
+    return None
+
+
+def _no_candidate_words(cands, strong, cur_cv) -> str:
+    if strong:
+        return (f"{strong[0].effect} lowers BIC by {-strong[0].delta_bic:.1f} but does not predict held-out tests "
+                f"better than the baseline (cross-validation {strong[0].cv_score:.1f} vs {cur_cv:.1f}); not accepted.")
+    if cands:
+        return (f"No candidate lowers BIC by more than {-BIC_THRESHOLD:g} (best: {cands[0].effect}, "
+                f"ΔBIC {cands[0].delta_bic:+.1f}).")
+    return "No candidates were given."
+
+
+def _describe_residual(fit: FitResult, channel: str) -> str:
+    rt, rq = fit.residuals()
+    r = rq if channel == "torque" else rt
+    assoc = association(fit.data, r, fit.prediction.drum_temp_C)
+    name, share = assoc[0]
+    words = trend_words(fit.data, r, fit.prediction.drum_temp_C, name)
+    return (f"the {channel} residual followed {name} most ({share:.0%} of its variance explained by {name} "
+            f"alone; it {words})")
 
 
 def _structure_words(s: dict) -> str:
@@ -241,3 +441,6 @@ def _structure_words(s: dict) -> str:
                      f"lag-1 autocorrelation {t['autocorrelation']['lag1']:+.2f} (p = {t['autocorrelation']['p']:.2g}), "
                      f"test offsets p = {t['test_offsets']['p']:.2g}, time profile p = {t['time_profile']['p']:.2g}")
     return "; ".join(parts)
+
+
+__all__ = ["Candidate", "Diagnosis", "diagnose", "cv_score", "structure", "channel_noise", "folds"]

@@ -19,6 +19,14 @@ def fit_covariance(fit) -> Covariance | None:
         return cov
     if isinstance(cov, tuple) and len(cov) == 2:
         return Covariance(tuple(cov[0]), np.asarray(cov[1], float))
+    corr, names = getattr(fit, "correlation", None), list(getattr(fit, "names", []) or [])
+    if corr is not None and len(names) == np.shape(corr)[0]:     # the joint fit's full covariance
+        se = np.array([fit.estimates[n].stderr for n in names])
+        keep = np.isfinite(se)
+        c = np.nan_to_num(np.asarray(corr, float)[np.ix_(keep, keep)]) * np.outer(se[keep], se[keep])
+        np.fill_diagonal(c, se[keep] ** 2)
+        if keep.any():
+            return Covariance(tuple(n for n, k in zip(names, keep) if k), c)
     names = [n for n, e in fit.estimates.items() if np.isfinite(e.stderr)]
     if not names:
         return None

@@ -1,8 +1,10 @@
 """Bench measurements: load and validate the bench CSV format.
 
 One row per sample, columns ``test_id,direction,hand_force_N,time_s,drum_temp_C,torque_Nm``
-and optionally ``ambient_C``.  Each test starts at ``time_s = 0`` (lever applied); its T_0
-is its drum temperature at time 0; ``torque_Nm`` is per drum.  Every problem is reported
+and optionally ``ambient_C`` (a logged ambient, one reading per sample).  Each test starts at
+``time_s = 0`` (lever applied); its drum-temperature reading there is a noisy measurement of
+its T_0 (``test_initial_temp_C``; the fits estimate T_0 with the other parameters); ``torque_Nm``
+is per drum.  Every problem is reported
 with file, line and column; nothing is guessed.
 """
 from __future__ import annotations
@@ -41,6 +43,7 @@ class Measurements:
     line: np.ndarray | None = None
     notes: list[str] = field(default_factory=list)
     torque_sigma_Nm: np.ndarray | None = None   # per-sample noise level (set by diagnose; weights the fits)
+    temp_sigma_C: np.ndarray | None = None      # per-sample drum-temperature noise level (idem)
 
     def __post_init__(self):
         self.tests = list(dict.fromkeys(self.test_id.tolist()))
@@ -80,7 +83,8 @@ class Measurements:
                             self.drum_temp_C[m], self.torque_Nm[m],
                             None if self.ambient_C is None else self.ambient_C[m], self.source,
                             None if self.line is None else self.line[m], [],
-                            None if self.torque_sigma_Nm is None else self.torque_sigma_Nm[m])
+                            None if self.torque_sigma_Nm is None else self.torque_sigma_Nm[m],
+                            None if self.temp_sigma_C is None else self.temp_sigma_C[m])
 
     def to_frame(self):
         import pandas as pd

@@ -1,10 +1,17 @@
-"""The model a calibration moves: the drum model's free values, evaluated on bench samples.
+"""The extended bench model: the paper's baseline plus effect hooks, over all samples at once.
 
-The chain itself is :class:`rollaway.model.DrumModel` (the same one the hold check, the
-simulator and sweeps use); this class only maps the fit's free parameters — ``mu_drum``
-(μ_d), ``heat_transfer_W_m2K`` (h) and ``"<effect>.<parameter>"`` — onto it and evaluates it
-on all samples of all tests at once.  With no effects (or all effects neutral) the result is
-bit-identical to :func:`rollaway.brake.drum_brake`.
+Free baseline parameters are ``mu_drum`` (μ_d) and ``heat_transfer_W_m2K`` (h); effect
+parameters are named ``"<effect>.<parameter>"``.  Per-test quantities are separate additions:
+``"initial_temp_C"`` (each test's start temperature T_0, a nuisance parameter) and effect
+parameters declared ``per_test``; in a values dict they hold one value per test (an array in
+the order of ``data.tests``).  Without ``"initial_temp_C"`` the t = 0 readings are used.
+A logged ambient that varies within a test is integrated through eq. (10)'s ODE
+(:func:`rollaway.physics.cooling.drum_temperature_logged_ambient_C`).
+
+The chain itself is :class:`rollaway.model.DrumModel` (the one the hold check, the simulator
+and sweeps use); this class maps the fit's values onto it and evaluates it on all samples of
+all tests at once.  With no effects (or all effects neutral) the result is bit-identical to
+:func:`rollaway.brake.drum_brake`.
 """
 from __future__ import annotations
 
@@ -12,10 +19,14 @@ from dataclasses import dataclass
 
 import numpy as np
 
-from rollaway.effects import ModelState
+from rollaway.effects import Effect, ModelState
 from rollaway.identify.measurements import Measurements
 from rollaway.model import BASELINE_BOUNDS, BASELINE_FREE, BASELINE_UNITS, DrumModel  # noqa: F401
 from rollaway.parameters import BrakeParameters
+from rollaway.physics import cooling
+
+INITIAL_TEMP = "initial_temp_C"          # per-test nuisance: each test's T_0 [°C]
+INITIAL_TEMP_BOUNDS = (-60.0, 1000.0)
 
 
 @dataclass
@@ -27,73 +38,151 @@ class Prediction:
 
 
 class BenchModel:
-    """Free parameters of a :class:`DrumModel` and its evaluation on measurements."""
+    """Baseline + a list of effects; :meth:`predict` evaluates it on measurements."""
 
     def __init__(self, params: BrakeParameters | str | None = None, effects=()):
         self.drum = params if isinstance(params, DrumModel) else DrumModel(params, effects)
         self.params = self.drum.params
-        self.effects = list(self.drum.effects)
+        self.effects: list[Effect] = list(self.drum.effects)
 
     # -- parameters ------------------------------------------------------------------
     def parameter_names(self) -> list[str]:
-        return list(BASELINE_FREE) + list(self.drum.neutral_values())
+        """Global parameters (one value for all tests)."""
+        return list(BASELINE_FREE) + [f"{e.name}.{p.name}" for e in self.effects for p in e.parameters
+                                      if not p.per_test]
+
+    def per_test_parameters(self) -> list[str]:
+        """Parameters with one value per test: T_0 first, then per-test effect parameters."""
+        return [INITIAL_TEMP] + [f"{e.name}.{p.name}" for e in self.effects for p in e.parameters if p.per_test]
+
+    def initial_values(self) -> dict[str, float]:
+        """Starting point of a fit: the set's μ_d and h, each effect parameter's ``initial``."""
+        v = self.neutral_values()
+        for e in self.effects:
+            v.update({f"{e.name}.{p.name}": p.initial for p in e.parameters})
+        return v
 
     def neutral_values(self) -> dict[str, float]:
-        return {"mu_drum": self.params.mu_drum, "heat_transfer_W_m2K": self.params.heat_transfer_W_m2K,
-                **self.drum.neutral_values()}
+        v = {"mu_drum": self.params.mu_drum, "heat_transfer_W_m2K": self.params.heat_transfer_W_m2K}
+        for e in self.effects:
+            v.update({f"{e.name}.{k}": x for k, x in e.neutral_values().items()})
+        return v
 
     def bounds(self, name: str) -> tuple[float, float]:
+        if name == INITIAL_TEMP:
+            return INITIAL_TEMP_BOUNDS
         return self.drum.bounds(name)
 
     def unit(self, name: str) -> str:
+        if name == INITIAL_TEMP:
+            return "°C"
         return self.drum.unit(name)
 
     def temperature_parameters(self) -> list[str]:
         """Parameters of the drum-temperature channel (h and temperature-changing effects)."""
         return ["heat_transfer_W_m2K"] + [f"{e.name}.{p.name}" for e in self.effects if e.touches_temperature()
-                                          for p in e.parameters]
+                                          for p in e.parameters if not p.per_test]
 
     def torque_parameters(self) -> list[str]:
         return ["mu_drum"] + [f"{e.name}.{p.name}" for e in self.effects if not e.touches_temperature()
-                              for p in e.parameters]
+                              for p in e.parameters if not p.per_test]
 
     # -- evaluation ------------------------------------------------------------------
-    def _split(self, values: dict | None):
-        values = {**self.neutral_values(), **(values or {})}
-        effect_values = {k: float(v) for k, v in values.items() if k not in BASELINE_FREE}
-        return values, effect_values
-
-    def _inputs(self, data: Measurements, values: dict) -> dict:
-        amb = self.params.ambient_temp_C if data.ambient_C is None else data.ambient_C
-        return dict(initial_temp_C=data.initial_temp_C, ambient_C=amb,
-                    heat_transfer_W_m2K=float(values["heat_transfer_W_m2K"]), test_index=data.test_index)
+    def _active(self, values: dict, data: Measurements | None = None) -> list[tuple[Effect, dict]]:
+        out = []
+        for e in self.effects:
+            v = {}
+            for p in e.parameters:
+                x = values.get(f"{e.name}.{p.name}", p.neutral)
+                v[p.name] = (per_sample(x, data) if p.per_test and data is not None else float(x))
+            if not e.is_neutral(v):
+                out.append((e, v))
+        return out
 
     def state(self, data: Measurements, values: dict | None = None) -> ModelState:
-        values, _ = self._split(values)
+        values = {**self.neutral_values(), **(values or {})}
         return self.drum.state(data.time_s, data.hand_force_N, data.sign, mu_drum=float(values["mu_drum"]),
                                **self._inputs(data, values))
 
+    def _effect_values(self, values: dict, data: Measurements) -> dict:
+        """Effect values for the chain: per-test ones expanded to every sample."""
+        out = {}
+        for e in self.effects:
+            for p in e.parameters:
+                key = f"{e.name}.{p.name}"
+                x = values.get(key, p.neutral)
+                out[key] = per_sample(x, data) if p.per_test else float(x)
+        return out
+
+    def _inputs(self, data: Measurements, values: dict) -> dict:
+        amb = self.params.ambient_temp_C if data.ambient_C is None else data.ambient_C
+        t0 = data.initial_temp_C if values.get(INITIAL_TEMP) is None else per_sample(values[INITIAL_TEMP], data)
+        return dict(initial_temp_C=t0, ambient_C=amb, heat_transfer_W_m2K=float(values["heat_transfer_W_m2K"]),
+                    test_index=data.test_index, test_ids=data.tests)
+
     def drum_temperature(self, data: Measurements, values: dict | None = None,
                          state: ModelState | None = None) -> np.ndarray:
-        """Measured channel: drum temperature, eq. (10) plus temperature hooks [°C]."""
-        values, effect_values = self._split(values)
+        """Measured channel: drum temperature, eq. (10) (through a logged ambient if it varies) plus hooks [°C]."""
+        values = {**self.neutral_values(), **(values or {})}
         kw = self._inputs(data, values)
-        st = state if state is not None else (self.state(data, values) if self.drum.active(effect_values) else None)
-        return self.drum.drum_temperature(data.time_s, initial_temp_C=kw["initial_temp_C"], ambient_C=kw["ambient_C"],
-                                          heat_transfer_W_m2K=kw["heat_transfer_W_m2K"], values=effect_values,
-                                          state=st)
+        base = None
+        if ambient_varies(data):
+            p = self.params
+            tau = cooling.cooling_time_constant_s(p.drum_density_kg_m3, p.drum_specific_heat_J_kgK, p.drum_volume_m3,
+                                                  kw["heat_transfer_W_m2K"], p.cooled_area_m2)
+            base = cooling.drum_temperature_logged_ambient_C(data.time_s, kw["initial_temp_C"], kw["ambient_C"], tau,
+                                                             data.test_index)
+        return self.drum.drum_temperature(data.time_s, values=self._effect_values(values, data), state=state,
+                                          base_temp_C=base, hand_force_N=data.hand_force_N, direction=data.sign,
+                                          **kw)
 
     def predict(self, data: Measurements, values: dict | None = None,
                 drum_temp_C: np.ndarray | None = None) -> Prediction:
         """Both channels for every sample; *drum_temp_C* reuses a temperature already computed."""
-        values, effect_values = self._split(values)
+        values = {**self.neutral_values(), **(values or {})}
+        if drum_temp_C is None and ambient_varies(data):
+            drum_temp_C = self.drum_temperature(data, values)
         s = self.drum.evaluate(data.time_s, data.hand_force_N, data.sign, mu_drum=float(values["mu_drum"]),
-                               values=effect_values, drum_temp_C=drum_temp_C, **self._inputs(data, values))
+                               values=self._effect_values(values, data), drum_temp_C=drum_temp_C,
+                               **self._inputs(data, values))
         return Prediction(s.drum_temp_C, s.lining_temp_C, s.normal_force_N, s.torque_Nm)
 
     def drum_model(self, values: dict | None = None, **kw) -> DrumModel:
-        """The calibrated :class:`DrumModel` at *values* (μ_d and h go into the parameter set)."""
-        values, effect_values = self._split(values)
+        """The calibrated :class:`DrumModel` at *values* (μ_d and h go into the parameter set).
+
+        Per-test values (T_0, per-test effect parameters) describe the bench's tests, not the car:
+        they are left out (per-test effect parameters at their neutral values).
+        """
+        values = {**self.neutral_values(), **(values or {})}
+        effect_values = {f"{e.name}.{p.name}": float(values.get(f"{e.name}.{p.name}", p.neutral))
+                         for e in self.effects for p in e.parameters if not p.per_test}
         return DrumModel(self.params.replace(mu_drum=float(values["mu_drum"]),
                                              heat_transfer_W_m2K=float(values["heat_transfer_W_m2K"])),
                          self.effects, effect_values, **kw)
+
+
+def per_sample(value, data: Measurements) -> np.ndarray | float:
+    """A per-test quantity (scalar, or one value per test in ``data.tests`` order) at every sample."""
+    a = np.asarray(value, float)
+    if a.ndim == 0:
+        return float(a)
+    if a.shape != (data.n_tests,):
+        raise ValueError(f"per-test values: {a.shape[0]} given for {data.n_tests} tests")
+    return a[data.test_index]
+
+
+def ambient_varies(data: Measurements) -> bool:
+    """True when a logged ambient changes within a test (then eq. 10's ODE is integrated)."""
+    cached = getattr(data, "_ambient_varies", None)
+    if cached is None:
+        a = data.ambient_C
+        if a is None:
+            cached = False
+        else:
+            lo = np.full(data.n_tests, np.inf)
+            hi = np.full(data.n_tests, -np.inf)
+            np.minimum.at(lo, data.test_index, a)
+            np.maximum.at(hi, data.test_index, a)
+            cached = bool(np.any(hi > lo))
+        data._ambient_varies = cached
+    return cached

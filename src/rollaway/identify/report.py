@@ -92,24 +92,17 @@ def design_margins(fits: list[tuple[str, object]], case: dict = DESIGN_CASE) -> 
     (:func:`rollaway.hold.required_torque`).
     """
     from rollaway.hold import required_torque
-    from rollaway.identify.measurements import Measurements
-    t = np.linspace(0.0, case["long_s"], 121)
-    n = t.size
-    data = Measurements(test_id=np.repeat(["down", "up"], n), direction=np.repeat(["downhill", "uphill"], n),
-                        hand_force_N=np.full(2 * n, case["hand_force_N"]), time_s=np.tile(t, 2),
-                        drum_temp_C=np.full(2 * n, case["initial_temp_C"]), torque_Nm=np.zeros(2 * n),
-                        source="design case")
+    from rollaway.hold import min_brake_margin
     out = []
     for name, fit in fits:
-        model = fit.model
+        model = fit.model.drum_model(fit.values)       # the calibrated drum model (per-test values left out)
         t_req = float(required_torque(model.params, case["grade_pct"], case["occupants"]))
-        torque = np.asarray(model.predict(data, fit.values).torque_Nm)
-        margin = 2.0 * torque / t_req
         row = {"model": name, "demand_Nm": t_req}
-        for k, d in enumerate(("downhill", "uphill")):
-            m = margin[k * n:(k + 1) * n]
-            row[f"{d}_short"] = float(m[t <= case["duration_s"] + 1e-9].min())
-            row[f"{d}_long"] = float(m.min())
+        for d in ("downhill", "uphill"):
+            for key, dur in (("short", case["duration_s"]), ("long", case["long_s"])):
+                row[f"{d}_{key}"] = float(min_brake_margin(model, case["hand_force_N"], case["grade_pct"], d,
+                                                           case["occupants"], dur,
+                                                           initial_temp_C=case["initial_temp_C"]))
         out.append(row)
     return out
 
@@ -294,6 +287,11 @@ def diagnosis_report(diag, path) -> None:
     body += "<h2>Residuals of the calibrated paper model</h2>" + png(residual_figure(diag.baseline, noise))
     if diag.refined is not diag.baseline:
         body += "<h2>Residuals of the refined model</h2>" + png(residual_figure(diag.refined, noise))
+    shape = getattr(diag, "shape", None)
+    if shape:                       # "form": "partial": what the data want against the catalogue's form
+        from rollaway.identify.shape import shape_figure
+        body += "<h2>Form partial: the shape the data want</h2>" + png(shape_figure(shape, shape.get("effect",
+                                                                                                      verdict)))
     write(path, page(f"rollaway diagnose: {diag.data.source}", body))
 
 

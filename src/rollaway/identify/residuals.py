@@ -1,124 +1,84 @@
-"""Residual analysis: model-free noise estimate, structure tests, covariates, excursions.
+"""Residual analysis: structure tests, covariates, excursions (the noise model is in :mod:`.noise`).
 
-The noise level is estimated without the physics: each test gets its own smooth curve,
-a cubic in x = e^{−t/τ} (τ the calibrated cooling time constant), fitted by linear least
-squares; the pooled residual variance (dof-corrected) is the noise variance.  Any smooth
-physical effect within a test, and any difference between tests, is absorbed by these
-curves, so what remains is measurement noise.
+The structure tests are calibrated for real bench noise: residuals are standardised by the
+noise model and clipped at ±3.5 (Huber-type, so a spike cannot fire a test), and three of
+the four tests are self-normalising analyses of variance (they compare the residual's
+pattern with its own scatter, not with an assumed σ).
 """
 from __future__ import annotations
 
 import math
-from dataclasses import dataclass
 
 import numpy as np
 from scipy import stats
 
 from rollaway.identify.measurements import Measurements
+from rollaway.identify.noise import CLIP, Noise, clip_square, noise_estimate  # noqa: F401  (re-exported)
 
-FLEX_BASIS = 4          # 1, x, x², x³ per test
 STRUCTURE_P = 1e-3      # significance of each structure test
 CHANNELS = {"torque": ("torque_Nm", "N·m"), "temperature": ("drum_temp_C", "°C")}
+MAX_TIME_BINS = 12
 
 
-@dataclass
-class Noise:
-    """Noise model σ_i = √(a² + (b·y_i)²): absolute part a, relative part b (of the signal level y)."""
-
-    sigma: float            # pooled (root-mean-square) σ over the samples
-    dof: int
-    absolute: float = 0.0
-    relative: float = 0.0
-
-    def at(self, level) -> np.ndarray:
-        return np.sqrt(self.absolute ** 2 + (self.relative * np.asarray(level, float)) ** 2)
-
-    def as_dict(self):
-        return {"sigma": self.sigma, "dof": self.dof, "absolute": self.absolute, "relative": self.relative}
-
-
-def noise_estimate(data: Measurements, values: np.ndarray, time_constant_s: float,
-                   relative: bool = False) -> Noise | None:
-    """Noise of one channel from per-test smooth curves (no physics).
-
-    With *relative*, the per-test variances s_k² are regressed (non-negative least squares,
-    weighted by their dof) on a² + b²·⟨y²⟩_k, so noise proportional to the signal (a torque
-    σ of 1–2 %) is recognised; otherwise σ is one pooled constant.
-    """
-    rss_k, dof_k, lev_k = [], [], []
-    for i in range(data.n_tests):
-        rows = data.test_index == i
-        n = int(rows.sum())
-        if n < FLEX_BASIS + 2:
-            continue
-        x = np.exp(-data.time_s[rows] / time_constant_s)
-        basis = np.vander(x, FLEX_BASIS, increasing=True)
-        coef, *_ = np.linalg.lstsq(basis, values[rows], rcond=None)
-        r = values[rows] - basis @ coef
-        rss_k.append(float(r @ r))
-        dof_k.append(n - FLEX_BASIS)
-        lev_k.append(float(np.mean((basis @ coef) ** 2)))
-    dof = int(sum(dof_k))
-    if dof == 0:
-        return None
-    pooled = math.sqrt(sum(rss_k) / dof)
-    if not relative or len(rss_k) < 3:
-        return Noise(pooled, dof, pooled, 0.0)
-    from scipy.optimize import nnls
-    d = np.array(dof_k, float)
-    s2 = np.array(rss_k) / d
-    design = np.column_stack([np.ones_like(s2), np.array(lev_k)])
-    fitted = np.full_like(s2, float(np.sum(d * s2) / np.sum(d)))
-    for _ in range(3):    # iteratively reweighted: var(s²) ∝ σ⁴/dof, σ from the current fit (not the noisy s²)
-        w = np.sqrt(d) / np.maximum(fitted, 1e-30)
-        (a2, b2), _ = nnls(design * w[:, None], s2 * w)
-        fitted = np.maximum(design @ np.array([a2, b2]), 1e-30)
-    if a2 + b2 <= 0:
-        return Noise(pooled, dof, pooled, 0.0)
-    sig = np.sqrt(a2 + b2 * np.array(lev_k))
-    return Noise(float(np.sqrt(np.sum(d * sig ** 2) / dof)), dof, math.sqrt(a2), math.sqrt(b2))
+def _anova(z: np.ndarray, groups: np.ndarray) -> tuple[float, int, int, float]:
+    """F test of group means against zero, error from the within-group scatter: (F, df1, df2, p)."""
+    g = np.unique(groups, return_inverse=True)[1]
+    ng = int(g.max()) + 1 if g.size else 0
+    cnt = np.bincount(g, minlength=ng).astype(float)
+    mean = np.bincount(g, z, ng) / np.maximum(cnt, 1)
+    between = float(np.sum(cnt * mean ** 2))
+    within = float(np.sum((z - mean[g]) ** 2))
+    df1, df2 = ng, int(z.size - ng)
+    if df2 < 1 or within <= 0:
+        return 0.0, df1, max(df2, 1), 1.0
+    f = (between / df1) / (within / df2)
+    return f, df1, df2, float(stats.f.sf(f, df1, df2))
 
 
-def structure_tests(data: Measurements, residual: np.ndarray, noise: Noise, k: int = 0,
+def time_bins(t: np.ndarray) -> np.ndarray:
+    """Sampling times as groups: the distinct times if few, else quantile bins."""
+    ut = np.unique(t)
+    if len(ut) <= MAX_TIME_BINS:
+        return np.searchsorted(ut, t)
+    edges = np.unique(np.quantile(t, np.linspace(0, 1, MAX_TIME_BINS + 1)[1:-1]))
+    return np.searchsorted(edges, t, side="right")
+
+
+def structure_tests(data: Measurements, residual: np.ndarray, noise: Noise, k: float = 0,
                     mask: np.ndarray | None = None, sigma: np.ndarray | None = None) -> dict:
-    """Tests for structure left in *residual* (measured − model) given the noise level.
+    """Tests for structure left in *residual* (measured − model) given the noise model.
 
-    * ``excess_variance``: residual variance against the noise variance (F test);
+    * ``excess_variance``: trimmed mean square of r/σ against the noise's (F test; degrees of
+      freedom reduced for heavy tails through the kurtosis, *k* fitted parameters removed);
     * ``autocorrelation``: pooled lag-1 autocorrelation within tests (white noise: ≈ 0);
-    * ``test_offsets``: per-test mean residuals against σ/√n (χ² test);
-    * ``time_profile``: mean residual at each sampling time across tests (χ² test) — a shared
-      time-shaped misfit (a step, a missing transient) shows here first.
+    * ``test_offsets``: per-test mean residuals against the within-test scatter (ANOVA F);
+    * ``time_profile``: mean residual at each sampling time (or time bin) across tests
+      against the scatter within (ANOVA F) — a step or a missing transient shows here first.
     Each has a p-value; ``structured`` is True if any p < 0.001.
     """
     m = np.ones(len(residual), bool) if mask is None else mask
-    sig = np.full(len(residual), noise.sigma) if sigma is None else np.asarray(sigma, float)
-    r, ti = residual[m] / sig[m], data.test_index[m]     # standardised residuals
-    n = r.size
-    s2 = float(r @ r) / max(n - k, 1)
-    f = s2
-    p_var = float(stats.f.sf(f, max(n - k, 1), noise.dof))
-    num = den = 0.0
-    pairs = 0
-    chi2 = 0.0
-    groups = 0
-    for i in np.unique(ti):
-        ri = r[ti == i]
-        num += float(ri[1:] @ ri[:-1])
-        den += float(ri @ ri)
-        pairs += ri.size - 1
-        chi2 += ri.size * float(ri.mean()) ** 2
-        groups += 1
+    sig = np.full(len(residual), noise.sigma) if sigma is None else np.broadcast_to(np.asarray(sigma, float),
+                                                                                    (len(residual),))
+    z = np.clip(residual[m] / sig[m], -CLIP, CLIP)
+    ti = data.test_index[m]
+    n = z.size
+    dof_r = max(n - k, 1.0)
+    ratio = float(clip_square(residual[m] / sig[m]).sum()) / dof_r
+    kurt = float(np.mean(z ** 4) / max(np.mean(z ** 2), 1e-300) ** 2)
+    p_var = float(stats.f.sf(ratio, dof_r * 2.0 / max(kurt - 1.0, 0.5), max(noise.dof, 1.0)))
+    order = np.lexsort((data.time_s[m], ti))
+    zs, ts = z[order], ti[order]
+    same = ts[1:] == ts[:-1]
+    num = float(np.sum((zs[1:] * zs[:-1])[same]))
+    den = float(z @ z)
+    pairs = int(same.sum())
     rho = num / den if den > 0 else 0.0
-    t = data.time_s[m]
-    ut = np.unique(t)
-    bins = np.searchsorted(ut, t) if len(ut) <= 30 else np.searchsorted(np.quantile(t, np.linspace(.1, .9, 9)), t)
-    chi2_t = sum(float((bins == b).sum()) * float(r[bins == b].mean()) ** 2 for b in np.unique(bins))
-    p_time = float(stats.chi2.sf(chi2_t, len(np.unique(bins))))
     p_ac = float(stats.norm.sf(rho * math.sqrt(max(pairs, 1))))
-    p_off = float(stats.chi2.sf(chi2, groups))
-    tests = {"excess_variance": {"ratio": f, "p": p_var}, "autocorrelation": {"lag1": rho, "p": p_ac},
-             "test_offsets": {"chi2": chi2, "df": groups, "p": p_off},
-             "time_profile": {"chi2": chi2_t, "df": int(len(np.unique(bins))), "p": p_time}}
+    f_off, d1, d2, p_off = _anova(z, ti)
+    f_t, e1, e2, p_time = _anova(z, time_bins(data.time_s[m]))
+    tests = {"excess_variance": {"ratio": ratio, "p": p_var}, "autocorrelation": {"lag1": rho, "p": p_ac},
+             "test_offsets": {"F": f_off, "df": [d1, d2], "p": p_off},
+             "time_profile": {"F": f_t, "df": [e1, e2], "p": p_time}}
     tests["structured"] = any(t["p"] < STRUCTURE_P for t in tests.values() if isinstance(t, dict))
     return tests
 

@@ -30,3 +30,36 @@ def drum_temperature_C(time_s: ArrayLike, initial_temp_C: ArrayLike, ambient_tem
 def temperature_change_K(drum_temp_C: ArrayLike, initial_temp_C: ArrayLike) -> np.ndarray:
     """ΔT = T(t) − T_0, eq. (1)/(9) [K]; negative while the drum cools."""
     return np.asarray(drum_temp_C, float) - initial_temp_C
+
+
+def drum_temperature_logged_ambient_C(time_s: ArrayLike, initial_temp_C: ArrayLike, ambient_C: ArrayLike,
+                                      time_constant_s: ArrayLike, test_index: ArrayLike) -> np.ndarray:
+    """Drum temperature cooling towards a logged, time-varying ambient [°C].
+
+    Integrates eq. (9)/(10)'s ODE ``dT/dt = −(T − T_amb(t))/τ`` exactly for an ambient that is
+    linear between consecutive samples of a test (the logged series, one reading per sample).
+    Over a step Δ with ambient a_j → a_{j+1} (slope m = (a_{j+1} − a_j)/Δ):
+    ``T_{j+1} = a_{j+1} − m·τ + (T_j − a_j + m·τ)·e^{−Δ/τ}``; a constant ambient gives eq. (10).
+
+    Rows of each test (``test_index``) must be in time order and start at its first sample,
+    where ``T = initial_temp_C``.  Vectorised across tests: one step per sample position.
+    """
+    t = np.asarray(time_s, float)
+    amb = np.broadcast_to(np.asarray(ambient_C, float), t.shape)
+    t0 = np.broadcast_to(np.asarray(initial_temp_C, float), t.shape)
+    tau = np.broadcast_to(np.asarray(time_constant_s, float), t.shape)
+    idx = np.asarray(test_index)
+    out = np.empty_like(t)
+    order = np.argsort(idx, kind="stable")          # rows grouped by test, time order kept
+    start = np.r_[True, idx[order][1:] != idx[order][:-1]] if len(order) else np.zeros(0, bool)
+    first = np.maximum.accumulate(np.where(start, np.arange(len(order)), 0))
+    pos = np.arange(len(order)) - first             # sample number within the test
+    out[order[start]] = t0[order[start]]
+    for k in range(1, int(pos.max()) + 1 if len(pos) else 0):
+        at = np.flatnonzero(pos == k)
+        rows, prev = order[at], order[at - 1]
+        dt = t[rows] - t[prev]
+        slope = (amb[rows] - amb[prev]) / np.where(dt > 0, dt, 1.0)
+        m_tau = slope * tau[rows]
+        out[rows] = amb[rows] - m_tau + (out[prev] - amb[prev] + m_tau) * np.exp(-dt / tau[rows])
+    return out

@@ -1,0 +1,170 @@
+"""Joint two-channel least squares with per-test parameters profiled out (variable projection).
+
+The objective is the sum of squared *standardised* residuals of both measured channels,
+``Σ ((T_model − T_meas)/σ_T)² + Σ ((M_model − M_meas)/σ_M)²`` over every sample (the t = 0
+temperature reading included: it measures T_0 like any other reading).  Parameters are of
+two kinds:
+
+* global ones (μ_d, h, effect parameters) — fitted by :func:`scipy.optimize.least_squares`
+  (trust-region reflective, bounds, variables scaled to order one);
+* per-test ones (each test's T_0, per-test effect parameters) — they touch only their own
+  test's rows, so their Jacobian is block diagonal and one model evaluation per family gives
+  all of it (every test perturbed at once).  For given globals they are eliminated by one
+  Gauss–Newton step per test (exact where the model is linear in them, as it is in T_0 for
+  eqs. 10 and 16), and the globals see the *projected* residual (Golub & Pereyra 1973,
+  Kaufman 1975).  Outer passes repeat until the per-test values stop moving.
+
+The projected Jacobian of the globals gives their covariance with the per-test parameters
+already accounted for (the Schur complement of the full normal matrix).
+"""
+from __future__ import annotations
+
+import functools
+from dataclasses import dataclass
+
+import numpy as np
+from scipy import optimize
+from threadpoolctl import threadpool_limits
+
+from rollaway.identify.measurements import Measurements
+from rollaway.identify.model import INITIAL_TEMP, BenchModel
+
+MAX_OUTER = 4
+_single_thread = False
+
+
+def single_blas_thread(func):
+    """Run *func* with one BLAS thread: the fits multiply tall, thin matrices (2·N × a few columns), where
+    a multi-threaded BLAS spends more time waking threads than computing (4× slower on a busy machine)."""
+    @functools.wraps(func)
+    def wrapper(*args, **kwargs):
+        global _single_thread
+        if _single_thread:
+            return func(*args, **kwargs)
+        _single_thread = True
+        try:
+            with threadpool_limits(limits=1, user_api="blas"):
+                return func(*args, **kwargs)
+        finally:
+            _single_thread = False
+    return wrapper
+
+
+@dataclass
+class Solution:
+    values: dict                  # all values (globals as floats, per-test families as arrays)
+    residual: np.ndarray          # standardised residuals (model − measured), [temperature | torque]
+    jac: np.ndarray | None        # projected Jacobian of the globals in scaled variables (rows as residual)
+    scale: np.ndarray             # variable scales: x = z·scale
+    local_grad: list[np.ndarray]  # per family: ∂residual/∂(own test's value), one entry per row
+    local_normal: np.ndarray | None   # (tests, m, m) per-test normal matrices of the families
+    nfev: int
+
+
+class Problem:
+    """The standardised residual of one model on one data set, with its free parameters."""
+
+    def __init__(self, model: BenchModel, data: Measurements, names, families, values: dict,
+                 w_temp: np.ndarray, w_torque: np.ndarray):
+        self.model, self.data = model, data
+        self.names, self.families = list(names), list(families)
+        self.values = dict(values)
+        self.w_temp, self.w_torque = np.asarray(w_temp, float), np.asarray(w_torque, float)
+        self.rows_test = np.concatenate([data.test_index, data.test_index])
+        self.nfev = 0
+        self.step = {f: 1e-4 * (model.bounds(f)[1] - model.bounds(f)[0]) for f in self.families}
+
+    def raw(self, vals: dict) -> np.ndarray:
+        self.nfev += 1
+        p = self.model.predict(self.data, vals)
+        with np.errstate(invalid="ignore"):
+            r = np.concatenate([(p.drum_temp_C - self.data.drum_temp_C) * self.w_temp,
+                                (p.torque_Nm - self.data.torque_Nm) * self.w_torque])
+        return np.where(np.isfinite(r), r, 1e6)
+
+    def profile(self, vals: dict):
+        """Residual with the per-test families at their best values (one Gauss–Newton step)."""
+        r0 = self.raw(vals)
+        if not self.families:
+            return r0, {}, [], None
+        grads = []
+        for f in self.families:
+            g = (self.raw({**vals, f: vals[f] + self.step[f]}) - r0) / self.step[f]
+            grads.append(g)
+        gm = np.stack(grads, axis=1)                       # rows × m
+        nt, m = self.data.n_tests, len(self.families)
+        normal = np.zeros((nt, m, m))
+        rhs = np.zeros((nt, m))
+        for a in range(m):
+            rhs[:, a] = np.bincount(self.rows_test, gm[:, a] * r0, nt)
+            for b in range(a, m):
+                normal[:, a, b] = normal[:, b, a] = np.bincount(self.rows_test, gm[:, a] * gm[:, b], nt)
+        ridge = 1e-12 * np.maximum(np.trace(normal, axis1=1, axis2=2), 1e-300)[:, None, None] * np.eye(m)
+        d = -np.linalg.solve(normal + ridge + 1e-300 * np.eye(m), rhs[..., None])[..., 0]
+        step = {}
+        for a, f in enumerate(self.families):
+            lo, hi = self.model.bounds(f)
+            new = np.clip(vals[f] + d[:, a], lo, hi)
+            d[:, a] = new - vals[f]
+            step[f] = new
+        r = r0 + np.einsum("ij,ij->i", gm, d[self.rows_test])
+        return r, step, grads, normal
+
+    def solve(self, start: dict, tol: float = 1e-10, jacobian: bool = True) -> Solution:
+        """Fit the globals (and per-test families); *jacobian*: also the projected Jacobian for errors.
+
+        The globals are fitted by MINPACK's Levenberg–Marquardt (:func:`scipy.optimize.least_squares`,
+        ``method="lm"``) in bounded-to-unbounded coordinates x = lo + (hi − lo)·(sin z + 1)/2 (the
+        MINUIT transformation, as lmfit uses): the residual has 2·N rows and only a few columns, where
+        MINPACK's QR is much cheaper per iteration than the trust-region-reflective solver.
+        """
+        model, names = self.model, self.names
+        vals = {**self.values, **{n: start[n] for n in names if n in start}}
+        for f in self.families:
+            vals[f] = np.array(vals[f], float, copy=True)
+        lo = np.array([model.bounds(n)[0] for n in names])
+        hi = np.array([model.bounds(n)[1] for n in names])
+        x0 = np.clip(np.array([vals[n] for n in names], float), lo, hi)
+        x0 = np.where(x0 <= lo, lo + 1e-6 * (hi - lo), np.where(x0 >= hi, hi - 1e-6 * (hi - lo), x0))
+        z = np.arcsin(np.clip(2.0 * (x0 - lo) / np.where(hi > lo, hi - lo, 1.0) - 1.0, -1.0, 1.0))
+
+        def to_x(zz):
+            return lo + (hi - lo) * (np.sin(zz) + 1.0) / 2.0
+
+        for _ in range(MAX_OUTER):
+            fixed = dict(vals)
+
+            def fun(zz):
+                v = dict(fixed)
+                v.update(zip(names, to_x(zz)))
+                return self.profile(v)[0]
+
+            if names:
+                res = optimize.least_squares(fun, z, method="lm", xtol=tol, ftol=tol, gtol=tol,
+                                             max_nfev=200 * (len(names) + 1))
+                z = res.x
+                vals.update(zip(names, to_x(z)))
+            r_lin, step, _, _ = self.profile(vals)
+            if not self.families:
+                break
+            vals.update(step)
+            r_new = self.raw(vals)
+            lin, new = float(r_lin @ r_lin), float(r_new @ r_new)
+            if abs(new - lin) <= 1e-7 * lin + 1e-9:     # the model is linear in the per-test values here
+                break
+        r, _, grads, normal = self.profile(vals)
+        r_true = self.raw(vals)
+        x = np.array([vals[n] for n in names], float)
+        scale = np.maximum(np.abs(x), 1e-3 * (hi - lo)) if names else np.zeros(0)
+        jac = self.projected_jacobian(vals, r, lo, hi, scale) if (names and jacobian) else None
+        return Solution(vals, r_true, jac, scale, grads, normal, self.nfev)
+
+    def projected_jacobian(self, vals, r0, lo, hi, scale) -> np.ndarray:
+        """∂(projected residual)/∂(x/scale) by forward differences, stepping inwards at a bound."""
+        jac = np.empty((r0.size, len(self.names)))
+        for i, n in enumerate(self.names):
+            h = 1e-6 * scale[i]
+            if vals[n] + h > hi[i]:
+                h = -h
+            jac[:, i] = (self.profile({**vals, n: vals[n] + h})[0] - r0) / h * scale[i]
+        return jac
