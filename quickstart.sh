@@ -15,6 +15,15 @@ echo; echo "== 4. sweep: grade x occupants x hand force, MuJoCo on the hold/roll
 rollaway sweep scenarios/sweeps/grade-load.toml --out out/grade-load --quiet
 echo; echo "== 5. the paper's Figures 9-14"
 rollaway paper
+echo; echo "== 6. from bench data to the road: diagnose bundled bench data, save the calibrated model, ask again"
+mkdir -p out
+rollaway diagnose examples/identify/bench-hidden-effect.csv --save-model out/calibrated.toml --report out/diagnose.html \
+  > out/diagnose.txt
+head -1 out/diagnose.txt; tail -1 out/diagnose.txt
+rollaway hold --grade-pct 30 --hand-force-N 250 --occupants 5 --duration-s 3600 | tail -1 | sed 's/^/  paper model:      /' || true
+rollaway hold --grade-pct 30 --hand-force-N 250 --occupants 5 --duration-s 3600 --params out/calibrated.toml \
+  --uncertainty 1000 | tail -2 | sed 's/^/  calibrated model: /' || true
+rollaway chart --params paper --params out/calibrated.toml --out out/design-chart-calibrated.png
 echo
 echo "== done. What was written, and what to open:"
 echo "  renders/quickstart/hot-parking-rollaway.mp4   the car rolling away when the drum has cooled (open it)"
@@ -22,4 +31,6 @@ echo "  renders/quickstart/hot-parking-rollaway.json  that simulation's result a
 echo "  out/grade-load/design-chart.png                least hand force against grade, per load (open it)"
 echo "  out/grade-load/map-grade-*.png                 hold / roll-away maps; results.csv holds every point"
 echo "  renders/paper/fig09..fig14*.png                the paper's Figures 9-14 redrawn"
+echo "  out/diagnose.html, out/calibrated.toml         the missing effect found in bench data; the calibrated model"
+echo "  out/design-chart-calibrated.png                least hand force: paper model vs calibrated model (open it)"
 echo "  docs/model.md                                  the model, equation by equation"
