@@ -11,7 +11,7 @@ from rollaway.cli.output import write_table
 from rollaway.errors import check_choice, ensure_parent_dir
 
 _LABELS = (
-    ("outcome", "outcome", ""), ("rollaway_time_s", "roll-away time", "s"),
+    ("outcome", "outcome", ""), ("status", "status", ""), ("rollaway_time_s", "roll-away time", "s"),
     ("analytic_time_to_slip_s", "analytic brake slip time (eqs. 10-23)", "s"),
     ("max_displacement_m", "max displacement along slope", "m"), ("creep_m", "creep while held", "m"),
     ("min_margin", "min brake margin (capacity/demand)", "-"),
@@ -37,11 +37,14 @@ def simulate(
     json_file: Optional[str] = typer.Option(None, "--json", help="also write the result as JSON to this file"),
     mode: str = typer.Option("fast", "--mode", help="fast (event-driven skip while at rest) | fixed (plain 1 ms stepping)"),
 ) -> None:
-    """Simulate a parked car held by the drum brake in MuJoCo: held, brake_slip or tyre_skid."""
+    """Simulate a parked car held by the drum brake in MuJoCo: held, brake_slip or tyre_skid.
+
+    Exit code 3 when the simulation diverged (outcome `diverged`, reason printed): no verdict.
+    """
     from rollaway.scenario import load_scenario
     from rollaway.sim import simulate as run_sim
     from rollaway.sim.render import check_render_path
-    from rollaway.sim.run import MODES
+    from rollaway.sim.run import EXIT_DIVERGED, MODES
 
     check_choice(mode, MODES, "--mode")
     if render is not None:
@@ -62,6 +65,9 @@ def simulate(
                    "hand_force_N": scenario.hand_force_N, "duration_s": scenario.duration_s}
         Path(json_file).write_text(json.dumps(payload, indent=1) + "\n", encoding="utf-8")
         typer.echo(f"wrote {json_file}")
+    if result.outcome == "diverged":
+        typer.echo(f"{scenario_file}: simulation diverged, no verdict: {result.diverged_reason}", err=True)
+        raise typer.Exit(EXIT_DIVERGED)
 
 
 def register(app: typer.Typer) -> None:

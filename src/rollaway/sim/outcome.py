@@ -37,7 +37,7 @@ ROLLAWAY_DISPLACEMENT_M = 0.05   # [assumed] travel along the slope that counts 
 POST_ROLLAWAY_S = 8.0            # [assumed] classification window after roll-away (also the video's end)
 POST_ROLLAWAY_M = 5.0            # [assumed] ... or this much travel, whichever comes first
 TYRE_SKID_SLIP = 0.5             # [assumed] slip ratio above which the rear wheels count as locked
-OUTCOMES = ("held", "brake_slip", "tyre_skid")
+OUTCOMES = ("held", "brake_slip", "tyre_skid", "diverged")   # diverged: a numerical failure, no verdict
 
 
 def crossing_time(t: np.ndarray, x: np.ndarray, level: float) -> float | None:

@@ -15,8 +15,8 @@ constraint forces are warm at t = 0 and nothing kicks the car; travel is measure
 ``mode="fast"``: the same, plus an honest event-driven skip.  Every :data:`REST_CHECK_UPDATES`
 updates the car is tested for rest: over the last window its speed along the slope stays
 below :data:`REST_SPEED_M_S`, the rear wheels turn slower than :data:`REST_OMEGA_RAD_S`, and
-every loaded tyre contact is inside its friction cone with margin (μ_r·N/|F_t| ≥
-1 + :data:`SKIP_MARGIN`, from MuJoCo's contact forces), so neither brake nor tyres slide.  At
+the rear tyres hold with margin (Σμ_r·N/|ΣF_t| ≥ 1 + :data:`SKIP_MARGIN`, from MuJoCo's
+contact forces; the front wheels roll freely and carry no slope force), so neither brake nor tyres slide.  At
 rest the static problem is fully determined by what the rear hinges carry (τ_i, read from
 MuJoCo): the tyres' loads do not change while the car stands, only the brake capacity does.
 As long as the drum torque of every wheel stays ≥ τ_i·(1 + :data:`SKIP_MARGIN`) the car
@@ -203,7 +203,7 @@ class _Run:
     def _skip(self, k: int, k_end: int, demand: float) -> int:
         """Jump over the span in which the car provably stays at rest; return the new update index."""
         ctrl, d = self.ctrl, self.data
-        if self.contacts.cone_margin(d) < 1.0 + SKIP_MARGIN:
+        if self.contacts.rear_margin(d) < 1.0 + SKIP_MARGIN:
             return k                                  # a tyre is at its limit: it may be sliding slowly
         carried = np.abs(ctrl.friction_force(d))
         target = min(ctrl.first_below(k, k_end, carried * (1.0 + SKIP_MARGIN)), k_end - REST_CHECK_UPDATES)

@@ -9,16 +9,15 @@ Two regimes, switched per rear wheel by :class:`TyrePhases`:
   normal force chatter (rear tyres unloaded on most steps, spikes of 100× the static load),
   which saturates the brake and turns "locked" wheels.
 * **slide** (Coulomb's law applied explicitly): once a rear tyre's contact point slips faster
-  than :data:`SLIDE_ENTER_M_S` *and* its drum can hold the wheel against the full sliding
-  friction (capacity > μ_r·N·R, so the wheel stays locked), that tyre's contact becomes
+  than :data:`SLIDE_ENTER_M_S` while its drum holds the wheel, that tyre's contact becomes
   frictionless (condim 1, MuJoCo keeps only the normal force) and the friction force
   F = −μ_r·N·v̂ (Coulomb; N the contact's normal force of the previous step, v̂ the slip
   direction of the contact point) is applied at the contact point every step.  Below
   :data:`SLIDE_REG_M_S` of slip the force is scaled by |v|/:data:`SLIDE_REG_M_S` (a viscous
   regularisation that keeps the explicit step stable: damping·dt/m_car < 1).  The tyre goes
   back to the stick regime when its slip falls below :data:`SLIDE_REG_M_S` or its drum can no
-  longer hold the wheel (the wheel then spins up and the tyre regrips, a brake slip that
-  MuJoCo's friction handles).
+  longer hold the wheel against the full sliding friction (capacity < μ_r·N·R: the wheel then
+  spins up and the tyre regrips, a brake slip that MuJoCo's friction handles).
 
 All thresholds [assumed]; measured effect in tests/sim/test_skid.py.
 """
@@ -31,6 +30,8 @@ from rollaway.sim.model import STICK_IMPRATIO, ModelInfo
 
 SLIDE_ENTER_M_S = 4e-3      # [assumed] contact slip that starts the slide regime (creep is ~1e-7 m/s)
 SLIDE_REG_M_S = 2e-3        # [assumed] regularisation speed of the explicit friction; also the exit speed
+CONE_EPS = 1e-6             # [assumed] |F_t| ≥ μN(1 − CONE_EPS): the contact is on its friction cone
+STICK_EPS = 1e-4            # [assumed] static test: |F_t| < μN(1 − STICK_EPS) on a rear tyre means the axle sticks
 _BODY = mujoco.mjtObj.mjOBJ_BODY
 
 
@@ -67,6 +68,30 @@ class TyreContacts:
             return np.inf
         return float(np.min(mu[loaded] * n[loaded] / ft[loaded]))
 
+    def static_on_cone(self, data: mujoco.MjData) -> bool:
+        """Whether both rear tyres would be on their friction cones if the car stood still now.
+
+        A static test with MuJoCo's friction (condim 3): velocities zeroed, one ``mj_forward``;
+        the state is restored (the next ``mj_step`` recomputes everything from qpos/qvel).
+        """
+        m, geoms = self.model, list(self.info.rear_tyre_geoms)
+        condim, qvel = m.geom_condim[geoms].copy(), data.qvel.copy()
+        m.geom_condim[geoms] = 3
+        data.qvel[:] = 0.0
+        mujoco.mj_forward(m, data)
+        n, ft = self.forces(data)
+        m.geom_condim[geoms] = condim
+        data.qvel[:] = qvel
+        mujoco.mj_forward(m, data)
+        mu = self.info.tyre_road_mu
+        return bool(np.all(ft[2:] >= mu * n[2:] * (1.0 - STICK_EPS)))
+
+    def rear_margin(self, data: mujoco.MjData) -> float:
+        """Σμ_r·N / |ΣF_t| of the rear tyres (inf when they carry no friction): the axle's reserve."""
+        n, ft = self.forces(data)
+        carried = ft[2:].sum()
+        return float(self.info.tyre_road_mu * n[2:].sum() / carried) if carried > 0 else np.inf
+
     def rear_slip(self, data: mujoco.MjData) -> np.ndarray:
         """(2, 3) world-frame slip velocity of the rear tyres' contact points (road-tangential part)."""
         nrm, r = self.info.road_normal, self.info.wheel_radius_m
@@ -93,17 +118,36 @@ class TyrePhases:
         return bool(self.sliding.any())
 
     def update(self, data: mujoco.MjData, capacity_Nm: np.ndarray) -> None:
-        """Choose each rear tyre's regime from its slip and whether its drum can lock the wheel."""
+        """Choose the rear tyres' regime (module docstring).
+
+        The two rear tyres share the slope force; one of them on its friction cone while the
+        other has reserve is a car at rest (statically indeterminate split), so the axle is
+        the unit: it enters the slide regime when *both* rear tyres are on their cones
+        (|F_t| ≥ μ_r·N within :data:`CONE_EPS`, MuJoCo's contact forces) or a contact point
+        slips faster than :data:`SLIDE_ENTER_M_S` while its wheel does not roll along
+        (|ω|·R < slip/2).  A wheel leaves it when its drum can no longer hold it against
+        μ_r·N·R (N averaged over the last update's steps; clean in this regime); the axle
+        leaves it when the slip is below :data:`SLIDE_REG_M_S` and MuJoCo's friction would
+        hold the car at rest (:meth:`TyreContacts.static_on_cone`).
+        """
         slip = np.linalg.norm(self.contacts.rear_slip(data), axis=1)
-        n = self.contacts.forces(data)[0][2:]
+        omega = np.abs(data.qvel[list(self.info.rear_dofs)])
         mu, r = self.info.tyre_road_mu, self.info.wheel_radius_m
-        holds_wheel = capacity_Nm > mu * n * r
+        if not self.sliding.any():
+            n, ft = self.contacts.forces(data)
+            on_cone = bool(np.all((ft[2:] > 0) & (ft[2:] >= mu * n[2:] * (1.0 - CONE_EPS))))
+            slipping = bool(np.any((slip > SLIDE_ENTER_M_S) & (omega * r < 0.5 * slip)))
+            if on_cone or slipping:
+                for j in (0, 1):
+                    self._set(j, True, data.time)
+                self._normal[:] = 0.0
+            return
         for j in (0, 1):
-            if not self.sliding[j] and slip[j] > SLIDE_ENTER_M_S and holds_wheel[j]:
-                self._set(j, True, data.time)
-            elif self.sliding[j] and (slip[j] < SLIDE_REG_M_S or not holds_wheel[j]):
+            if self.sliding[j] and self._normal[j] > 0 and capacity_Nm[j] < mu * self._normal[j] * r:
                 self._set(j, False, data.time)
-        self._normal[:] = n
+        if self.sliding.any() and np.all(slip < SLIDE_REG_M_S) and not self.contacts.static_on_cone(data):
+            for j in (0, 1):
+                self._set(j, False, data.time)
 
     def _set(self, j: int, sliding: bool, time_s: float) -> None:
         self.sliding[j] = sliding
@@ -115,9 +159,11 @@ class TyrePhases:
         """*nstep* MuJoCo steps with the explicit Coulomb force on the sliding rear tyres."""
         m, info = self.model, self.info
         mu, r, nrm = info.tyre_road_mu, info.wheel_radius_m, info.road_normal
+        total = np.zeros(2)
         for _ in range(nstep):
             data.qfrc_applied[:] = 0.0
             n = self.contacts.forces(data)[0][2:]
+            total += n
             slip = self.contacts.rear_slip(data)
             for j in np.nonzero(self.sliding)[0]:
                 speed = float(np.linalg.norm(slip[j]))
@@ -128,6 +174,7 @@ class TyrePhases:
                 mujoco.mj_applyFT(m, data, force, self._zero3, data.xpos[b] - r * nrm, b, data.qfrc_applied)
             mujoco.mj_step(m, data)
         data.qfrc_applied[:] = 0.0
+        self._normal[:] = total / nstep
 
     def reset(self) -> None:
         for j in (0, 1):
