@@ -98,7 +98,9 @@ class TyreContacts:
         out = np.zeros((2, 3))
         for j, b in enumerate(self.info.rear_wheel_bodies):
             mujoco.mj_objectVelocity(self.model, data, _BODY, b, self._v6, 0)
-            v = self._v6[3:] + np.cross(self._v6[:3], -r * nrm)
+            w, lin = self._v6[:3], self._v6[3:]
+            a = -r * nrm                                   # hub → contact point
+            v = lin + (w[1] * a[2] - w[2] * a[1], w[2] * a[0] - w[0] * a[2], w[0] * a[1] - w[1] * a[0])
             out[j] = v - (v @ nrm) * nrm
         return out
 
