@@ -30,6 +30,9 @@ from rollaway.sim.model import STICK_IMPRATIO, ModelInfo
 
 SLIDE_ENTER_M_S = 4e-3      # [assumed] contact slip that starts the slide regime (creep is ~1e-7 m/s)
 SLIDE_REG_M_S = 2e-3        # [assumed] regularisation speed of the explicit friction; also the exit speed
+SLIDE_FAST_M_S = 0.02       # [assumed] above this slip the Coulomb force is held over SLIDE_HOLD_STEPS steps
+SLIDE_HOLD_STEPS = 5        # [assumed] 5 ms: short against the car's roll and pitch periods
+CONE_CHECK_M_S = 1e-4       # [assumed] slip above which the stick regime re-tests the friction cones
 CONE_EPS = 1e-6             # [assumed] |F_t| ≥ μN(1 − CONE_EPS): the contact is on its friction cone
 STICK_EPS = 1e-4            # [assumed] static test: |F_t| < μN(1 − STICK_EPS) on a rear tyre means the axle sticks
 _BODY = mujoco.mjtObj.mjOBJ_BODY
@@ -113,7 +116,8 @@ class TyrePhases:
         self.sliding = np.zeros(2, dtype=bool)
         self.first_slide_s: float | None = None
         self._normal = np.zeros(2)
-        self._zero3 = np.zeros(3)
+        self._check_cone = True
+        self._arm = -info.wheel_radius_m * info.road_normal
 
     @property
     def any_sliding(self) -> bool:
@@ -133,16 +137,20 @@ class TyrePhases:
         hold the car at rest (:meth:`TyreContacts.static_on_cone`).
         """
         slip = np.linalg.norm(self.contacts.rear_slip(data), axis=1)
-        omega = np.abs(data.qvel[list(self.info.rear_dofs)])
         mu, r = self.info.tyre_road_mu, self.info.wheel_radius_m
         if not self.sliding.any():
+            # the cone test costs a contact-force read; needed at the start and once anything slips
+            if not (self._check_cone or slip.max() > CONE_CHECK_M_S):
+                return
+            self._check_cone = False
+            omega = np.abs(data.qvel[list(self.info.rear_dofs)])
             n, ft = self.contacts.forces(data)
             on_cone = bool(np.all((ft[2:] > 0) & (ft[2:] >= mu * n[2:] * (1.0 - CONE_EPS))))
             slipping = bool(np.any((slip > SLIDE_ENTER_M_S) & (omega * r < 0.5 * slip)))
             if on_cone or slipping:
                 for j in (0, 1):
                     self._set(j, True, data.time)
-                self._normal[:] = 0.0
+                self._normal[:] = n[2:]
             return
         for j in (0, 1):
             if self.sliding[j] and self._normal[j] > 0 and capacity_Nm[j] < mu * self._normal[j] * r:
@@ -150,6 +158,8 @@ class TyrePhases:
         if self.sliding.any() and np.all(slip < SLIDE_REG_M_S) and not self.contacts.static_on_cone(data):
             for j in (0, 1):
                 self._set(j, False, data.time)
+        if not self.sliding.any():
+            self._check_cone = True
 
     def _set(self, j: int, sliding: bool, time_s: float) -> None:
         self.sliding[j] = sliding
@@ -157,26 +167,39 @@ class TyrePhases:
         if sliding and self.first_slide_s is None:
             self.first_slide_s = float(time_s)
 
+    def _apply(self, data: mujoco.MjData, normal: np.ndarray, slip: np.ndarray) -> np.ndarray:
+        """Write the Coulomb force of each sliding rear tyre into ``xfrc_applied``; return the slip speeds."""
+        info = self.info
+        speed = np.sqrt((slip * slip).sum(axis=1))
+        for j in (0, 1):
+            b = info.rear_wheel_bodies[j]
+            if not self.sliding[j] or normal[j] <= 0.0 or speed[j] == 0.0:
+                data.xfrc_applied[b] = 0.0
+                continue
+            f = -info.tyre_road_mu * normal[j] * slip[j] / max(speed[j], SLIDE_REG_M_S)
+            a = self._arm                                  # hub (the wheel's centre of mass) → contact point
+            data.xfrc_applied[b, :3] = f
+            data.xfrc_applied[b, 3:] = (a[1] * f[2] - a[2] * f[1], a[2] * f[0] - a[0] * f[2], a[0] * f[1] - a[1] * f[0])
+        return speed
+
     def step(self, data: mujoco.MjData, nstep: int) -> None:
-        """*nstep* MuJoCo steps with the explicit Coulomb force on the sliding rear tyres."""
-        m, info = self.model, self.info
-        mu, r, nrm = info.tyre_road_mu, info.wheel_radius_m, info.road_normal
-        total = np.zeros(2)
-        for _ in range(nstep):
-            data.qfrc_applied[:] = 0.0
+        """*nstep* MuJoCo steps with the explicit Coulomb force on the sliding rear tyres.
+
+        While every sliding tyre slips faster than :data:`SLIDE_FAST_M_S` the force (magnitude
+        μ_r·N, direction of a slip that turns slowly) is held over :data:`SLIDE_HOLD_STEPS`
+        steps, stepped in C; slower, near the regularised region, it is recomputed every step.
+        """
+        m = self.model
+        total, done = np.zeros(2), 0
+        while done < nstep:
             n = self.contacts.forces(data)[0][2:]
-            total += n
-            slip = self.contacts.rear_slip(data)
-            for j in np.nonzero(self.sliding)[0]:
-                speed = float(np.linalg.norm(slip[j]))
-                if n[j] <= 0.0 or speed == 0.0:
-                    continue
-                force = -mu * n[j] * slip[j] / max(speed, SLIDE_REG_M_S)
-                b = info.rear_wheel_bodies[j]
-                mujoco.mj_applyFT(m, data, force, self._zero3, data.xpos[b] - r * nrm, b, data.qfrc_applied)
-            mujoco.mj_step(m, data)
-        data.qfrc_applied[:] = 0.0
+            speed = self._apply(data, n, self.contacts.rear_slip(data))
+            k = min(SLIDE_HOLD_STEPS if np.all(speed[self.sliding] > SLIDE_FAST_M_S) else 1, nstep - done)
+            mujoco.mj_step(m, data, nstep=k)
+            total += k * n
+            done += k
         self._normal[:] = total / nstep
+        data.xfrc_applied[list(self.info.rear_wheel_bodies)] = 0.0
 
     def reset(self) -> None:
         for j in (0, 1):
