@@ -106,7 +106,7 @@ def test_huge_gravity_diverges_and_is_never_held():
     bad = dataclasses.replace(s, params=dataclasses.replace(s.params, gravity_m_s2=1e9))
     r = simulate(bad)
     assert r.outcome == "diverged" and r.status == "diverged" and r.rollaway_time_s is None
-    assert "MuJoCo warning" in r.diverged_reason or "energy" in r.diverged_reason
+    assert any(w in r.diverged_reason for w in ("MuJoCo warning", "energy", "settling", "left the road"))
     assert r.to_dict()["diverged_reason"]
 
 

@@ -63,8 +63,9 @@ REST_OMEGA_RAD_S = 1e-3          # [assumed]
 SKIP_MARGIN = 2e-3               # [assumed] 2× the measured hold/slip threshold error (< 0.1 %)
 MIN_SKIP_UPDATES = 50            # skip only if it saves ≥ 1 s
 TRIAL_UPDATES = 50               # [assumed] a trial proves rest for 1 s from the saved state
-SETTLE_STEPS = 300               # [assumed] relaxation steps before t = 0 (contact time constant 4 ms)
+SETTLE_STEPS = 150               # [assumed] relaxation steps before t = 0 (contact time constant 4 ms)
 LOCK_NM = 1e7                    # brake torque that locks the wheels while settling
+MAX_SETTLE_M = 0.01              # [assumed] settling sinks the car ~0.1 mm; more means the contacts fail
 MIN_WINDOW_UPDATES = 10          # classification: at least 0.2 s after the roll-away [assumed]
 MIN_WINDOW_M = 0.02              # ... and 2 cm more travel [assumed]
 CLEAR_SLIP = 0.1                 # slip ratio within 0.1 of 0 or 1 (full and latter half) is unambiguous [assumed]
@@ -129,7 +130,6 @@ class _Run:
         self.skips: list = []
         self.min_margin = np.inf
         self.integrated_updates = 0
-        self.diverged: str | None = None
         self._rest_max = np.zeros(2)              # max |speed|, max |ω| since the last rest check
 
     def _settle(self) -> None:
@@ -138,9 +138,16 @@ class _Run:
         check_constants(m, self.info)
         self.ctrl.update(m, d)
         m.dof_frictionloss[self.rear] = LOCK_NM
+        placed = d.qpos[self.pos].copy()
+        guard = DivergenceGuard(d, self.scenario.params.gravity_m_s2, self.info.theta_rad)
         for _ in range(SETTLE_STEPS):
             mujoco.mj_step(m, d)
             d.qvel[:] = 0.0
+        sink = float((d.qpos[self.pos] - placed) @ self.info.road_normal)
+        self.diverged = guard.check(d, 0.0, 0.0, 0.0)
+        if self.diverged is None and abs(sink) > MAX_SETTLE_M:
+            self.diverged = (f"settling moved the car {sink:+.3g} m along the road normal (the contacts cannot "
+                             f"carry it; at most {MAX_SETTLE_M} m is plausible)")
         d.time = 0.0
         mujoco.mj_forward(m, d)
 
@@ -170,6 +177,8 @@ class _Run:
         cap = ctrl.update(m, d)
         self._record(cap)
         rollaway_k = rollaway_rec = None
+        if self.diverged:
+            k_stop = 0
         while k < k_stop:
             cap = ctrl.update(m, d)
             if k < k_end:
