@@ -144,3 +144,15 @@ def test_early_classification_matches_the_full_window():
         early, full = simulate(s), simulate(s, full_window=True)
         assert early.outcome == full.outcome and early.rollaway_time_s == full.rollaway_time_s
         assert early.integrated_time_s < full.integrated_time_s
+
+
+@pytest.mark.parametrize("grade,direction,occupants", [(20, "downhill", 1), (45, "uphill", 5)])
+@pytest.mark.parametrize("tyre,brake,expected", [(1.5, 1.02, "held"), (1.5, 0.98, "brake_slip"),
+                                                 (1.02, 2.0, "held"), (0.98, 2.0, "tyre_skid")])
+def test_verdict_does_not_depend_on_how_the_grade_is_represented(grade, direction, occupants, tyre, brake, expected):
+    """The same slope as road tilt, as gravity tilt, and split half and half: one verdict."""
+    s = combined(grade, direction, occupants, tyre, brake, duration_s=10.0)
+    theta = math.atan(grade / 100)
+    for phi in (0.0, theta / 2, theta):
+        r = _Run(s, "fast", gravity_tilt_rad=phi).run()
+        assert r.outcome == expected, (phi, r.outcome, r.slip_ratio)

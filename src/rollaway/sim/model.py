@@ -190,7 +190,7 @@ def _quat_mul(a, b):
     return out
 
 
-def configure(model: mujoco.MjModel, scenario: Scenario) -> ModelInfo:
+def configure(model: mujoco.MjModel, scenario: Scenario, *, gravity_tilt_rad: float = 0.0) -> ModelInfo:
     """Set the per-scenario values of a compiled car in place and return its :class:`ModelInfo`.
 
     What a scenario changes without changing the model's structure: the road's tilt and the
@@ -199,15 +199,21 @@ def configure(model: mujoco.MjModel, scenario: Scenario) -> ModelInfo:
     frictionloss, tyre condim, impratio) are reset.  Then the constants are recomputed
     (:func:`set_constants`).  The structure (vehicle geometry and masses, occupants) must
     match the model's: see :func:`car_model`.
+
+    ``gravity_tilt_rad`` represents part φ of the slope angle θ by tilting gravity instead of
+    the road (road tilted by θ − φ, gravity by φ: the same physics); the simulator uses 0, the
+    tests use it to check that verdicts do not depend on the representation.
     """
     p = scenario.params
     grade, facing = effective_slope(scenario)
     theta = float(grade_angle_rad(grade))
+    phi = float(gravity_tilt_rad)
+    road_tilt = theta - phi
     jid = lambda n: mujoco.mj_name2id(model, mujoco.mjtObj.mjOBJ_JOINT, n)  # noqa: E731
     gid = lambda n: mujoco.mj_name2id(model, mujoco.mjtObj.mjOBJ_GEOM, n)  # noqa: E731
     car = mujoco.mj_name2id(model, mujoco.mjtObj.mjOBJ_BODY, "car")
     free = jid("car_free")
-    q_slope = np.array([math.cos(theta / 2), 0.0, math.sin(theta / 2), 0.0])
+    q_slope = np.array([math.cos(road_tilt / 2), 0.0, math.sin(road_tilt / 2), 0.0])
     sgn = _car_forward_sign(facing)
     rot = np.zeros(9)
     mujoco.mju_quat2Mat(rot, q_slope)
@@ -219,7 +225,7 @@ def configure(model: mujoco.MjModel, scenario: Scenario) -> ModelInfo:
     adr = int(model.jnt_qposadr[free])
     model.qpos0[adr:adr + 3] = model.body_pos[car]
     model.qpos0[adr + 3:adr + 7] = model.body_quat[car]
-    model.opt.gravity[:] = [0.0, 0.0, -p.gravity_m_s2]
+    model.opt.gravity[:] = [p.gravity_m_s2 * math.sin(phi), 0.0, -p.gravity_m_s2 * math.cos(phi)]
     model.opt.impratio = STICK_IMPRATIO
     tyres = tuple(gid(f"tyre_{w}") for w in WHEELS)
     for g in tyres + (road,):
@@ -231,8 +237,8 @@ def configure(model: mujoco.MjModel, scenario: Scenario) -> ModelInfo:
         grade_pct=grade, facing=facing, theta_rad=theta, total_mass_kg=m_tot,
         demand_axle_Nm=float(required_torque(p, grade, scenario.occupants)),
         wheel_radius_m=p.wheel_radius_m,
-        downhill_unit=np.array([math.cos(theta), 0.0, -math.sin(theta)]),
-        road_normal=np.array([math.sin(theta), 0.0, math.cos(theta)]),
+        downhill_unit=np.array([math.cos(road_tilt), 0.0, -math.sin(road_tilt)]),
+        road_normal=np.array([math.sin(road_tilt), 0.0, math.cos(road_tilt)]),
         car_body=car, car_qpos_adr=adr, car_dof_adr=int(model.jnt_dofadr[free]),
         rear_dofs=tuple(int(model.jnt_dofadr[jid(f"hinge_{w}")]) for w in REAR),
         front_dofs=tuple(int(model.jnt_dofadr[jid(f"hinge_{w}")]) for w in ("fl", "fr")),
@@ -268,7 +274,7 @@ _CACHE: dict[tuple, mujoco.MjModel] = {}
 CACHE_SIZE = 16     # compiled physics-only cars kept per process (one per structure)
 
 
-def car_model(scenario: Scenario) -> tuple[mujoco.MjModel, ModelInfo]:
+def car_model(scenario: Scenario, *, gravity_tilt_rad: float = 0.0) -> tuple[mujoco.MjModel, ModelInfo]:
     """The physics-only car for *scenario*, compiled once per structure and reconfigured per call.
 
     Sweeps change grade, heading, friction, gravity and the brake between points; those are
@@ -283,4 +289,4 @@ def car_model(scenario: Scenario) -> tuple[mujoco.MjModel, ModelInfo]:
             _CACHE.pop(next(iter(_CACHE)))
         model = build_spec(scenario, physics_only=True).compile()
         _CACHE[key] = model
-    return model, configure(model, scenario)
+    return model, configure(model, scenario, gravity_tilt_rad=gravity_tilt_rad)

@@ -108,10 +108,12 @@ def _margin(capacity_Nm: float, demand_Nm: float) -> float:
 
 
 class _Run:
-    def __init__(self, scenario: Scenario, mode: str, *, physics_only: bool = True, full_window: bool = False):
+    def __init__(self, scenario: Scenario, mode: str, *, physics_only: bool = True, full_window: bool = False,
+                 gravity_tilt_rad: float = 0.0):
         self.wall0 = time.perf_counter()          # wall time includes building the model
         self.scenario, self.mode, self.full_window = scenario, mode, full_window
-        self.model, self.info = car_model(scenario) if physics_only else build_model(scenario)
+        self.model, self.info = (car_model(scenario, gravity_tilt_rad=gravity_tilt_rad) if physics_only
+                                 else build_model(scenario))
         self.data = mujoco.MjData(self.model)
         horizon = scenario.duration_s + oc.POST_ROLLAWAY_S + 1.0
         self.ctrl = BrakeController(scenario, self.info, self.model, horizon,
