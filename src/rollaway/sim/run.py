@@ -84,7 +84,7 @@ class SimResult:
     min_margin: float                   # min over time of capacity/demand (rear axle)
     capacity_Nm_at_rollaway: float | None   # rear-axle brake capacity at the roll-away (None if held)
     demand_Nm_at_rollaway: float | None     # T_req, eq. (23) (None if held)
-    slip_ratio: float | None            # rear-wheel slip ratio after the roll-away
+    slip_ratio: float | None            # rear-wheel slip ratio after the roll-away (mean of both wheels)
     demand_Nm: float                    # T_req at the rear axle, eq. (23)
     analytic_time_to_slip_s: float | None   # brake-only prediction (rollaway.hold), None if it holds
     tyre_adhesion_margin: float         # analytic μ_r N_r / (m g sin θ)
@@ -95,6 +95,7 @@ class SimResult:
     status: str = "ok"                  # ok | rolling_at_end | held_at_limit | diverged
     diverged_reason: str | None = None
     tyre_slide_s: float | None = None   # when a rear tyre first entered the slide regime
+    wheel_slip_ratios: tuple | None = None  # (left, right) rear slip ratios; the larger decides tyre_skid
     trace: Trace | None = field(repr=False, compare=False, default=None)
 
     def to_dict(self) -> dict:
@@ -274,17 +275,23 @@ class _Run:
 
     # -- classification ---------------------------------------------------------------------
     def _classified(self, rollaway_k: int, r0: int, k: int) -> bool:
-        """True once the slip ratio since the roll-away (and over its latter half) is clearly 0 or 1."""
+        """True once each rear wheel's slip ratio since the roll-away (and over its latter half) is clearly 0 or 1."""
         if k - rollaway_k < MIN_WINDOW_UPDATES:
             return False
-        x, phi = self._series()
+        x = self._series()[0]
         if abs(x[-1] - x[r0]) < MIN_WINDOW_M:
             return False
-        fwd = self.info.facing == "downhill"
-        R = self.info.wheel_radius_m
-        s_all = oc.slip_ratio(x[r0:], phi[r0:], R, fwd, 0)
-        s_late = oc.slip_ratio(x[r0:], phi[r0:], R, fwd, (len(x) - r0) // 2)
-        return all(abs(s) < CLEAR_SLIP for s in (s_all, s_late)) or all(s > 1 - CLEAR_SLIP for s in (s_all, s_late))
+        half = (len(x) - r0) // 2
+        for s_all, s_late in zip(self._wheel_slips(x, self.rec.view("qpos"), r0),
+                                 self._wheel_slips(x, self.rec.view("qpos"), r0 + half)):
+            if not (max(abs(s_all), abs(s_late)) < CLEAR_SLIP or min(s_all, s_late) > 1 - CLEAR_SLIP):
+                return False
+        return True
+
+    def _wheel_slips(self, x: np.ndarray, qpos: np.ndarray, start: int) -> list[float]:
+        """Slip ratio of each rear wheel from record *start* to the last (:func:`outcome.slip_ratio`)."""
+        fwd, R = self.info.facing == "downhill", self.info.wheel_radius_m
+        return [oc.slip_ratio(x, qpos[:, q], R, fwd, start) for q in self.rear_q]
 
     def _series(self) -> tuple[np.ndarray, np.ndarray]:
         qpos = self.rec.view("qpos")
@@ -337,25 +344,27 @@ class _Run:
             status, onset = self._end_state(tr)
             if onset is not None:
                 t_roll = float(t[onset])
-        slip = cap_roll = dem_roll = None
+        slip = cap_roll = dem_roll = wheel_slips = None
         held_end = len(t)
         if t_roll is not None:
             held_end = max(int(np.searchsorted(t, t_roll)), 1) if onset is None else max(onset, 1)
-            slip = oc.slip_ratio(x, tr.wheel_angle_rad, info.wheel_radius_m, info.facing == "downhill",
-                                 held_end - 1)
+            wheel_slips = self._wheel_slips(x, tr.qpos, held_end - 1)
+            slip = float(np.mean(wheel_slips))
             cap_roll = float(tr.capacity_Nm[held_end - 1].sum())
             dem_roll = info.demand_axle_Nm
         tyre_margin = float(tyre_adhesion_margin(sc.params, info.grade_pct, info.facing, sc.occupants))
         if slip is not None and not np.isfinite(slip):      # no travel yet: the lower limit gave way
             slip = 1.0 if tyre_margin < _margin(cap_roll, dem_roll) else 0.0
+            wheel_slips = [slip, slip]
         t_slip = float(time_to_slip_s(sc.params, sc.hand_force_N, info.grade_pct, info.facing, sc.occupants,
                                       horizon_s=sc.duration_s))
-        outcome = "diverged" if self.diverged else oc.classify(t_roll is not None, slip or 0.0)
+        outcome = "diverged" if self.diverged else oc.classify(t_roll is not None, max(wheel_slips or [0.0]))
         return SimResult(
             scenario=sc.name, mode=self.mode, outcome=outcome,
             rollaway_time_s=t_roll, max_displacement_m=float(np.max(np.abs(x))),
             creep_m=self._creep(tr, held_end), min_margin=float(self.min_margin),
             capacity_Nm_at_rollaway=cap_roll, demand_Nm_at_rollaway=dem_roll, slip_ratio=slip,
+            wheel_slip_ratios=None if wheel_slips is None else tuple(float(w) for w in wheel_slips),
             demand_Nm=info.demand_axle_Nm, analytic_time_to_slip_s=None if np.isnan(t_slip) else t_slip,
             tyre_adhesion_margin=tyre_margin,
             sim_time_s=float(t[-1]), integrated_time_s=self.integrated_updates * ctrl.period_s,
