@@ -95,19 +95,19 @@ class BrakeController:
         self._load(k)
         return float(self.drum_temp_C[k - self.k0])
 
-    def first_below(self, k_from: int, k_to: int, level_Nm: np.ndarray) -> int:
-        """First update in [k_from, k_to) at which a wheel's torque (current sense) is below *level_Nm*
-        (per wheel), or *k_to*; also the least summed torque over the span up to it."""
+    def first_below(self, k_from: int, k_to: int, level_Nm: float) -> int:
+        """First update in [k_from, k_to) at which the summed torque of both wheels (current
+        sense) is below *level_Nm*, or *k_to*; ``least_Nm`` is the least summed torque before it."""
         rows = (self.sense > 0).astype(int)
         k, least = k_from, np.inf
         while k < k_to:
             self._load(k)
             stop = min(k_to, self.k0 + len(self.time_s))
-            tq = self.torque_Nm[rows, k - self.k0:stop - self.k0]
-            below = np.nonzero(np.any(tq < np.asarray(level_Nm)[:, None], axis=0))[0]
-            end = int(below[0]) if below.size else tq.shape[1]
+            total = self.torque_Nm[rows, k - self.k0:stop - self.k0].sum(axis=0)
+            below = np.nonzero(total < level_Nm)[0]
+            end = int(below[0]) if below.size else total.size
             if end:
-                least = min(least, float(tq[:, :end].sum(axis=0).min()))
+                least = min(least, float(total[:end].min()))
             if below.size:
                 self.least_Nm = least
                 return k + end
