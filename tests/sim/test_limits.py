@@ -22,7 +22,8 @@ def combined(grade, direction, occupants, tyre_margin, brake_margin, duration_s=
 
 
 GRID = [(5, "downhill", 0, 1.02), (5, "uphill", 5, 3.0), (20, "downhill", 1, 1.5), (20, "uphill", 0, 1.02),
-        (32.5, "downhill", 5, 1.08), (32.5, "uphill", 1, 1.1), (50, "downhill", 0, 3.0), (50, "uphill", 5, 1.02)]
+        (32.5, "downhill", 5, 1.08), (32.5, "uphill", 1, 1.1), (50, "downhill", 0, 3.0), (50, "uphill", 5, 1.02),
+        (5, "uphill", 3, 1.02), (50, "downhill", 3, 1.02), (20, "downhill", 4, 2.0), (35, "uphill", 2, 1.3)]
 
 
 @pytest.mark.parametrize("grade,direction,occupants,brake", GRID)
@@ -32,11 +33,14 @@ def test_combined_limit_grid(grade, direction, occupants, brake, tyre, expected)
     assert r.outcome == expected, (r.outcome, r.status, r.slip_ratio)
     if expected == "held":
         assert r.max_displacement_m < 1e-3 and r.status == "ok"
-    else:
-        assert r.slip_ratio > 0.99
+    else:        # at least one rear wheel locked and sliding (with an uneven load the other drum may slip)
+        assert max(r.wheel_slip_ratios) > 0.99
+        if occupants in (0, 2, 4, 5):                   # laterally symmetric load: both wheels locked
+            assert r.slip_ratio > 0.99
 
 
-@pytest.mark.parametrize("grade,direction,occupants", [(20, "downhill", 0), (32.5, "downhill", 5), (50, "uphill", 0)])
+@pytest.mark.parametrize("grade,direction,occupants", [(20, "downhill", 0), (32.5, "downhill", 5), (50, "uphill", 0),
+                                                      (20, "downhill", 1), (50, "uphill", 1)])
 def test_tyre_threshold_half_percent_with_a_weak_brake(grade, direction, occupants):
     """Brake margin 1.02: tyre margin 1.005 holds, 0.995 skids (labelled as a tyre skid)."""
     assert simulate(combined(grade, direction, occupants, 1.005, 1.02)).outcome == "held"
