@@ -1,32 +1,35 @@
-"""The tyre–road contacts: forces and slip read from MuJoCo, and the sliding phase.
+"""The tyre–road contacts: forces and slip read from MuJoCo, and the sliding regime.
 
-Two regimes, switched per rear wheel by :class:`TyrePhases`:
+Two regimes for the rear tyres, switched by :class:`TyrePhases` (the axle enters together,
+each wheel may leave on its own):
 
 * **stick** (MuJoCo's own friction): condim 3, elliptic cone, ``impratio``
-  :data:`rollaway.sim.model.STICK_IMPRATIO`.  A high impratio keeps a held tyre's creep small
-  (MuJoCo documentation, "Preventing slip"), but with it a *sliding* contact bounces: the
-  convex contact model couples slip to separation, and a stiff friction regulariser makes the
+  :data:`rollaway.sim.model.STICK_IMPRATIO` (1000).  A high impratio keeps a held tyre's creep
+  small (MuJoCo documentation, "Preventing slip"), but with it a *sliding* contact bounces: the
+  convex contact model couples slip to separation and the stiff friction regulariser makes the
   normal force chatter (rear tyres unloaded on most steps, spikes of 100× the static load),
   which saturates the brake and turns "locked" wheels.
-* **slide** (Coulomb's law applied explicitly): once a rear tyre's contact point slips faster
-  than :data:`SLIDE_ENTER_M_S` while its drum holds the wheel, that tyre's contact becomes
-  frictionless (condim 1, MuJoCo keeps only the normal force) and the friction force
-  F = −μ_r·N·v̂ (Coulomb; N the contact's normal force of the previous step, v̂ the slip
-  direction of the contact point) is applied at the contact point every step.  Below
-  :data:`SLIDE_REG_M_S` of slip the force is scaled by |v|/:data:`SLIDE_REG_M_S` (a viscous
-  regularisation that keeps the explicit step stable: damping·dt/m_car < 1).  The tyre goes
-  back to the stick regime when its slip falls below :data:`SLIDE_REG_M_S` or its drum can no
-  longer hold the wheel against the full sliding friction (capacity < μ_r·N·R: the wheel then
-  spins up and the tyre regrips, a brake slip that MuJoCo's friction handles).
+* **slide** (Coulomb's law applied explicitly): when both rear tyres are on their friction
+  cones, or a contact point slips faster than :data:`SLIDE_ENTER_M_S` while its wheel does not
+  roll along, the rear contacts become frictionless (condim 1: MuJoCo keeps the normal force)
+  and the Coulomb force F = −μ_r·N·v̂ (N the contact's normal force from MuJoCo, v̂ the slip
+  direction of the contact point) is applied at each contact point through ``xfrc_applied``.
+  Below :data:`SLIDE_REG_M_S` of slip it is scaled by |v|/:data:`SLIDE_REG_M_S` (a viscous
+  regularisation that keeps the explicit force stable: damping·dt/m_car < 1); it is recomputed
+  every step below :data:`SLIDE_FAST_M_S` and every :data:`SLIDE_HOLD_STEPS` steps above.
+  A wheel goes back to the stick regime when its drum can no longer hold it against μ_r·N·R
+  (the wheel spins up and its tyre regrips: a brake slip, handled by MuJoCo's friction); the
+  axle goes back when the slip has died out and a static test says MuJoCo's friction holds.
 
-All thresholds [assumed]; measured effect in tests/sim/test_skid.py.
+All thresholds [assumed]; measured effect in tests/sim/test_limits.py (clean skid, combined
+limits, knife edges).
 """
 from __future__ import annotations
 
 import mujoco
 import numpy as np
 
-from rollaway.sim.model import STICK_IMPRATIO, ModelInfo
+from rollaway.sim.model import ModelInfo
 
 SLIDE_ENTER_M_S = 4e-3      # [assumed] contact slip that starts the slide regime (creep is ~1e-7 m/s)
 SLIDE_REG_M_S = 2e-3        # [assumed] regularisation speed of the explicit friction; also the exit speed
@@ -61,15 +64,6 @@ class TyreContacts:
             n[i] += self._f6[0]
             ft[i] += float(np.hypot(self._f6[1], self._f6[2]))
         return n, ft
-
-    def cone_margin(self, data: mujoco.MjData) -> float:
-        """Least μ_r·N/|F_t| over the loaded tyre contacts (inf when none carries friction)."""
-        n, ft = self.forces(data)
-        mu = self.model.geom_friction[list(self.info.tyre_geoms), 0]
-        loaded = ft > 0
-        if not loaded.any():
-            return np.inf
-        return float(np.min(mu[loaded] * n[loaded] / ft[loaded]))
 
     def static_on_cone(self, data: mujoco.MjData) -> bool:
         """Whether both rear tyres would be on their friction cones if the car stood still now.
@@ -200,9 +194,3 @@ class TyrePhases:
             done += k
         self._normal[:] = total / nstep
         data.xfrc_applied[list(self.info.rear_wheel_bodies)] = 0.0
-
-    def reset(self) -> None:
-        for j in (0, 1):
-            self.model.geom_condim[self.info.rear_tyre_geoms[j]] = 3
-        self.sliding[:] = False
-        self.model.opt.impratio = STICK_IMPRATIO
