@@ -13,18 +13,21 @@ Everything scenario-dependent is set on the spec, never by editing XML text:
 * the rear hinges' ``frictionloss`` starts at the drum torque at t = 0; it is then driven by
   :class:`rollaway.sim.brake_callback.BrakeController`.
 
-Numerics [assumed, measured — see ``/work/shared/notes/mujoco-findings.md`` and tests/sim]:
-1 ms Euler step, elliptic cone, impratio 1000, Newton solver, stiff joint friction
-(``solreffriction 0.004 1``, ``solimpfriction 0.9999 0.9999 0.001``) and tyre contacts
-(``solref 0.004 1``, ``solimp 0.99 0.9999 0.001``).  MuJoCo's soft friction lets a held
-wheel creep at v ≈ (1−d)/d · dof_invweight0 · T / b; after compiling we multiply the rear
-hinges' ``dof_invweight0`` by :data:`REAR_INVWEIGHT_SCALE` (it only scales the constraint
-regulariser; :func:`apply_invweight` must be re-applied after any ``mj_setConst``).  That
-brings creep below 0.5 mm per simulated hour (measured: 0.31 mm at 20 %, 0.46 mm at 30 %,
-of which most is tyre sliding; impratio 1000 keeps that part small).  MuJoCo sleep
-(enabled in the XML so that the file alone holds a car still) is switched off here by
-default: the simulator has its own event-driven skip, and sleeping trees do not wake when
-``dof_frictionloss`` changes.
+Numerics [assumed, measured — see tests/sim]: 1 ms Euler step, elliptic cone, impratio 1000
+while the tyres stick (:mod:`rollaway.sim.tyres` handles sliding), Newton solver, stiff joint
+friction (``solreffriction 0.004 1``, ``solimpfriction 0.9999 0.9999 0.001``) and tyre contacts
+(``solref 0.004 1``, ``solimp 0.99 0.9999 0.001``).  MuJoCo's soft friction lets a held wheel
+creep at v ≈ (1−d)/d · dof_invweight0 · T / b; the rear hinges' ``dof_invweight0`` is
+multiplied by :data:`REAR_INVWEIGHT_SCALE` (it only scales the constraint regulariser).
+``mj_setConst`` resets it, so :func:`set_constants` is the one place constants are recomputed
+and re-applies the scaling, and :func:`check_constants` asserts it before every run.  Creep:
+0.31 mm per simulated hour at 20 %, 0.45 mm at 30 %.  MuJoCo sleep (enabled in the XML so
+that the file alone holds a car still) is switched off here: the simulator has its own
+event-driven skip, and sleeping trees do not wake when ``dof_frictionloss`` changes.
+
+Reuse: :func:`car_model` compiles the physics-only car (no decorative geoms) once per
+structure (occupants and vehicle geometry) and :func:`configure` sets everything else per
+scenario on the compiled :class:`mujoco.MjModel` — the same numbers a fresh compile gives.
 """
 from __future__ import annotations
 
