@@ -181,3 +181,11 @@ def test_long_hold_keeps_little():
     assert r.outcome == "held" and r.sim_time_s == pytest.approx(2 * 86400.0, abs=0.05)
     assert len(r.trace.time_s) < 100
     assert run.ctrl.torque_Nm.shape[1] <= CHUNK_UPDATES < run.ctrl.n_updates
+
+
+def test_non_finite_drum_torque_is_a_user_error():
+    from rollaway.errors import UserError
+    s = make_scenario(duration_s=5)
+    bad = dataclasses.replace(s, params=dataclasses.replace(s.params, mu_drum=0.0), hand_force_N=1e308)
+    with pytest.raises(UserError, match="not finite"):
+        simulate(bad)

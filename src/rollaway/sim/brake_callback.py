@@ -78,6 +78,9 @@ class BrakeController:
                                 f"finite torque to simulate; lower mu_drum")
         # torque[0] when driven backward (eq. 19), torque[1] when driven forward (eq. 18)
         self.torque_Nm = np.stack([rev.torque_Nm, fwd.torque_Nm])
+        if not np.all(np.isfinite(self.torque_Nm)):
+            raise UserError(f"{scenario.source or scenario.name}: the drum torque is not finite (hand_force_N = "
+                            f"{force:g}, mu_drum = {p.mu_drum:g}); give a physical hand force and drum friction")
         self.drum_temp_C = fwd.drum_temp_C
 
     def index(self, time_s: float) -> int:
