@@ -7,7 +7,8 @@ Prints, per scenario: both verdicts, wall times (best of --repeat for the fast m
 ratio, the roll-away times and their difference (target ≤ 1 s), and the displacement of
 held cars in the fixed run (the creep over the whole duration, target ≤ 1 mm per hour).
 Both modes use the same model, 1 ms step and 20 ms brake update; the fixed mode integrates
-every step.  Exit code 1 if a verdict differs or a roll-away time differs by more than 1 s.
+every step.  Wall times are also printed in reference units (benchmarks/reference.py, the
+time of 300 000 raw mj_step calls of a plain car, measured in the same run).  Exit code 1 if a verdict differs or a roll-away time differs by more than 1 s.
 """
 from __future__ import annotations
 
@@ -34,7 +35,11 @@ def main(argv=None) -> int:
     head = (f"{'scenario':24s} {'duration_s':>10s} {'fast':>10s} {'fixed':>10s} {'fast_wall_s':>11s} "
             f"{'fixed_wall_s':>12s} {'ratio':>7s} {'t_roll_fast':>11s} {'t_roll_fixed':>12s} {'diff_s':>8s} "
             f"{'fixed_creep_mm':>14s}")
-    print(head)
+    sys.path.insert(0, str(Path(__file__).resolve().parent))
+    from reference import reference_unit_s
+    unit = reference_unit_s()
+    print(f"reference unit: {unit:.3f} s (300 000 raw mj_step of a plain car); wall times also in units")
+    print(head + f" {'fast_units':>10s} {'fixed_units':>11s}")
     bad = 0
     for f in files:
         s = load_scenario(f)
@@ -49,7 +54,8 @@ def main(argv=None) -> int:
         print(f"{s.name:24s} {s.duration_s:10.0f} {fast.outcome:>10s} {fixed.outcome:>10s} "
               f"{fast.wall_time_s:11.3f} {fixed.wall_time_s:12.2f} {fixed.wall_time_s / fast.wall_time_s:7.0f} "
               f"{_fmt(fast.rollaway_time_s):>11s} {_fmt(fixed.rollaway_time_s):>12s} {_fmt(diff, '+.4f'):>8s} "
-              f"{_fmt(creep, '.4f'):>14s}{'' if ok else '  MISMATCH'}", flush=True)
+              f"{_fmt(creep, '.4f'):>14s} {fast.wall_time_s / unit:10.4f} {fixed.wall_time_s / unit:11.3f}"
+              f"{'' if ok else '  MISMATCH'}", flush=True)
     print("all verdicts agree, roll-away times within 1 s" if not bad else f"{bad} scenario(s) disagree")
     return 1 if bad else 0
 

@@ -30,9 +30,17 @@ def main() -> None:
                     help="margin band simulated in MuJoCo (default: the sweep default, 0.95 1.08)")
     args = ap.parse_args()
 
+    import sys
+    sys.path.insert(0, os.path.dirname(os.path.abspath(__file__)))
+    from reference import reference_unit_s
+    unit = reference_unit_s()
     t_import = time.perf_counter()
     from rollaway.scenario import preset_scenarios
     from rollaway.sweep import grid_spec, run_sweep
+    import sys
+    sys.path.insert(0, os.path.dirname(os.path.abspath(__file__)))
+    from reference import reference_unit_s
+    unit = reference_unit_s()
     t_import = time.perf_counter() - t_import
 
     spec = grid_spec(preset_scenarios("fmvss135")[0], GRID, simulate="band", band=tuple(args.band),
@@ -56,6 +64,8 @@ def main() -> None:
     print(f"paper's check disagrees {res.n_disagree}")
     print(f"wall time              {res.wall_time_s:.1f} s (+ {t_import:.1f} s imports)")
     print(f"points per second      {res.n_points / res.wall_time_s:.0f}")
+    print(f"reference unit         {unit:.2f} s (300 000 raw mj_step of a plain car, this run)")
+    print(f"sweep in units         {res.wall_time_s / unit:.1f}  (target ≤ 15)")
     print(f"simulations per second {n_sim / res.wall_time_s:.1f}")
     if not args.out:
         shutil.rmtree(out, ignore_errors=True)

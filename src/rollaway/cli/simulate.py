@@ -11,7 +11,7 @@ from rollaway.cli.output import REPORT_FORMATS, echo_json, write_table
 from rollaway.errors import UserError, check_choice, ensure_parent_dir
 
 _LABELS = (
-    ("outcome", "outcome", ""), ("rollaway_time_s", "roll-away time", "s"),
+    ("outcome", "outcome", ""), ("status", "status", ""), ("rollaway_time_s", "roll-away time", "s"),
     ("analytic_time_to_slip_s", "analytic brake slip time (eqs. 10-23)", "s"),
     ("max_displacement_m", "max displacement along slope", "m"), ("creep_m", "creep while held", "m"),
     ("min_margin", "min brake margin (capacity/demand)", "-"),
@@ -87,13 +87,14 @@ def simulate(
     The verdict is in the output (--format json: "verdict" and "holds"); the exit code is 0 for
     any finished simulation (use 'rollaway check SCENARIO_TOML' for a pass/fail exit code).
     The brake torque comes from the scenario's drum model, effects included (--params
-    FILE.toml from 'rollaway fit --save-model').
+    FILE.toml from 'rollaway fit --save-model').  Exit code 3 when the simulation diverged
+    (outcome `diverged`, reason printed): no verdict.
     """
     from rollaway.cli.inputs import expect_scenario
     from rollaway.scenario import load_scenario
     from rollaway.sim import simulate as run_sim
     from rollaway.sim.render import check_render_path
-    from rollaway.sim.run import MODES
+    from rollaway.sim.run import EXIT_DIVERGED, MODES
 
     check_choice(fmt, REPORT_FORMATS, "--format")
     check_choice(mode, MODES, "--mode")
@@ -124,6 +125,9 @@ def simulate(
     if json_file is not None:
         Path(json_file).write_text(json.dumps(data, indent=1) + "\n", encoding="utf-8")
         say(f"wrote {json_file}")
+    if result.outcome == "diverged":
+        typer.echo(f"{scenario_file}: simulation diverged, no verdict: {result.diverged_reason}", err=True)
+        raise typer.Exit(EXIT_DIVERGED)
     return 0
 
 

@@ -18,7 +18,11 @@ Criteria (all thresholds [assumed], chosen well clear of the numerical creep, wh
    wheels (mean of both, signed so that rolling with the car counts positive).  It is the
    distance form of s = (v − ωR)/v, robust to slow starts.  s ≈ 0: the wheels turn with the
    car, the drum brake slipped (``brake_slip``); s ≈ 1: the rear wheels stay locked and the
-   tyres slide on the road (``tyre_skid``).  The boundary is :data:`TYRE_SKID_SLIP` = 0.5.
+   tyres slide on the road (``tyre_skid``).  The boundary is :data:`TYRE_SKID_SLIP` = 0.5,
+   applied to the *larger* of the two rear wheels' slip ratios: with a laterally uneven load
+   one drum may slip while the other wheel's tyre slides (mean s ≈ 0.5); a tyre gave way, so
+   that is a ``tyre_skid``.  ``slip_ratio`` reports the mean of both wheels.
+3. ``diverged``: the run failed numerically (:mod:`rollaway.sim.divergence`); no verdict.
 
 The brake **margin** reported is capacity/demand = (frictionloss_RL + frictionloss_RR) / T_req:
 the two rear drums' torque for the sense each wheel is driven (eqs. 17b, 18–21) against the
@@ -37,7 +41,7 @@ ROLLAWAY_DISPLACEMENT_M = 0.05   # [assumed] travel along the slope that counts 
 POST_ROLLAWAY_S = 8.0            # [assumed] classification window after roll-away (also the video's end)
 POST_ROLLAWAY_M = 5.0            # [assumed] ... or this much travel, whichever comes first
 TYRE_SKID_SLIP = 0.5             # [assumed] slip ratio above which the rear wheels count as locked
-OUTCOMES = ("held", "brake_slip", "tyre_skid")
+OUTCOMES = ("held", "brake_slip", "tyre_skid", "diverged")   # diverged: a numerical failure, no verdict
 
 
 def crossing_time(t: np.ndarray, x: np.ndarray, level: float) -> float | None:

@@ -72,6 +72,8 @@ def run_task(task: dict, simulate_fn: SimulateFn | None = None) -> dict:
         for f in SIM_FIELDS:
             v = getattr(res, f, None)
             rec[f"sim_{f}"] = float(v) if isinstance(v, (int, float)) and not isinstance(v, bool) else v
+        if rec["sim_outcome"] == "diverged":
+            raise FloatingPointError(f"simulation diverged: {getattr(res, 'diverged_reason', '')}")
         if rec["sim_outcome"] not in ("held", "brake_slip", "tyre_skid"):
             raise RuntimeError(f"simulator returned outcome {rec['sim_outcome']!r}")
         disp = rec.get("sim_max_displacement_m")
