@@ -195,6 +195,8 @@ def _run_locked(spec: SweepSpec, out: Path, *, workers, dask_address, simulate, 
         if executor is not None:
             executor.close()
         journal.close()
+    if interrupted:     # a Ctrl-C between a journal line and its record: the journal on disk is the truth
+        records.update({k: v for k, v in Journal(out).load().items() if k not in records})
 
     table = build_table(analytic, records, analytic_wall)
     files = list(write_table(table, out))
