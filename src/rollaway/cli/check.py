@@ -8,7 +8,7 @@ import typer
 
 from rollaway.cli.output import FORMATS, write_table
 from rollaway.errors import UserError, check_choice
-from rollaway.hold import analytic_verdict, minimum_hand_force_N
+from rollaway.hold import analytic_verdict
 from rollaway.model_file import load_model
 from rollaway.regulations import PRESETS, get_preset
 
@@ -26,8 +26,8 @@ def analytic_rows(preset_names, params, uncertainty: int | None = None) -> dict[
         for d in pr.directions:
             v = analytic_verdict(params, hand_force_N=pr.hand_force_N, grade_pct=pr.grade_pct, direction=d,
                                  occupants=pr.occupants, duration_s=pr.duration_s, initial_temp_C=pr.initial_temp_C)
-            fmin = float(minimum_hand_force_N(params, pr.grade_pct, d, pr.occupants, pr.duration_s,
-                                              initial_temp_C=pr.initial_temp_C))
+            # no number where none holds: the tyres slide (or the shoe self-locks) whatever the hand force
+            fmin = float("nan") if v.least_hand_force_N is None else v.least_hand_force_N
             for k, val in (("preset", name), ("direction", d), ("grade_pct", pr.grade_pct),
                            ("occupants", pr.occupants), ("hand_force_N", pr.hand_force_N),
                            ("duration_s", pr.duration_s), ("min_brake_margin", v.brake_margin_min),

@@ -27,7 +27,7 @@ def _summary(res) -> None:
                f"{n_sim} simulated in MuJoCo ({res.n_run} now, {res.n_resumed} from an earlier run)")
     if res.n_disagree:
         typer.echo(f"{res.n_disagree} points where the paper's 1D check disagrees (see the 'disagreement' column), e.g.:")
-        for text in t.loc[t["agree"] == False, "disagreement"].head(3):  # noqa: E712
+        for text in t.loc[t["agree"] == False, "disagreement"].drop_duplicates().head(3):  # noqa: E712
             typer.echo(f"  - {text}")
     if res.n_failed:
         first = t.loc[t["error"] != "", "error"].iloc[0]
