@@ -30,6 +30,7 @@ import numpy as np
 from numpy.typing import ArrayLike
 
 from rollaway.effects.base import Effect, ModelState
+from rollaway.effects.hooks import call_hook
 from rollaway.errors import UserError
 from rollaway.parameters import BrakeParameters
 from rollaway.physics import cooling, drum
@@ -250,7 +251,7 @@ class DrumModel:
                                  initial_temp_C=t0, ambient_C=amb, heat_transfer_W_m2K=h, **state_kw)
         temp = np.broadcast_to(temp, st.time_s.shape)
         for e, v in hooks:
-            temp = _call_hook(e, "drum_temperature", st, temp, v)
+            temp = call_hook(e, "drum_temperature", st, temp, v)
         return temp
 
     def evaluate(self, time_s: ArrayLike, hand_force_N: ArrayLike, direction="downhill", *,
@@ -325,16 +326,16 @@ class DrumModel:
         st.drum_temp_C = np.broadcast_to(np.asarray(temp, float), shape)
         lining = st.drum_temp_C
         for e, v in active:                                                     # step 2
-            lining = _call_hook(e, "lining_temperature", st, lining, v)
+            lining = call_hook(e, "lining_temperature", st, lining, v)
         st.lining_temp_C = lining
         dT = cooling.temperature_change_K(st.drum_temp_C, st.initial_temp_C)   # ΔT of the drum, eq. (16)
         u6 = drum.lining_displacement_m(st.hand_force_N, p.u6_slope_m_per_N, p.u6_offset_m)   # eq. (24)
         modulus = p.lining_modulus_Pa
         gap = p.gap_m if gap_m is None else np.asarray(gap_m, float)
         for e, v in active:                                                     # steps 3–4
-            u6 = _call_hook(e, "displacement", st, u6, v)
-            modulus = _call_hook(e, "lining_modulus", st, modulus, v, scalar_ok=True)
-            gap = _call_hook(e, "gap", st, gap, v, scalar_ok=True)
+            u6 = call_hook(e, "displacement", st, u6, v)
+            modulus = call_hook(e, "lining_modulus", st, modulus, v, scalar_ok=True)
+            gap = call_hook(e, "gap", st, gap, v, scalar_ok=True)
         f0 = self.unenergised_force(u6, dT, modulus, gap)                            # step 5, eq. (16a/b)
         k_d = p.drum_area_m2 * p.drum_modulus_Pa
         k_l = p.lining_area_m2 * np.asarray(modulus)
@@ -344,15 +345,15 @@ class DrumModel:
         if lining is not st.drum_temp_C:   # the lining's own thermal strain α_l·ΔT_l replaces α_l·ΔT_d (eq. 16)
             f0 = f0 + k_d * k_l * p.lining_expansion_per_K * l_eff * (lining - st.drum_temp_C) / den
         for e, v in active:
-            f0 = _call_hook(e, "clamp_force", st, f0, v)
+            f0 = call_hook(e, "clamp_force", st, f0, v)
         mu = np.broadcast_to(np.asarray(st.mu_drum, float), shape)
         for e, v in active:                                                     # step 6
-            mu = _call_hook(e, "friction", st, mu, v)
+            mu = call_hook(e, "friction", st, mu, v)
         factor = drum.self_energising_factor(mu, st.sign, p.shoe_arm_normal_m, p.shoe_arm_friction_m)  # step 7
         f_l = drum.normal_force_N(f0, factor)
         torque = drum.brake_torque_Nm(mu, f_l, p.drum_radius_m)                 # step 8, eq. (17b)
         for e, v in active:
-            torque = _call_hook(e, "torque", st, torque, v)
+            torque = call_hook(e, "torque", st, torque, v)
         b = lambda a: np.broadcast_to(np.asarray(a, float), shape)  # noqa: E731
         return BrakeSeries(time_s=b(st.time_s), drum_temp_C=b(st.drum_temp_C), normal_force_N=b(f_l),
                            torque_Nm=b(torque), self_locked=np.broadcast_to(np.isinf(factor), shape),
@@ -364,40 +365,6 @@ def _all_neutral(effect: Effect, v: dict) -> bool:
     if all(np.ndim(x) == 0 for x in v.values()):
         return bool(effect.is_neutral({k: float(x) for k, x in v.items()}))
     return False
-
-
-def _call_hook(effect: Effect, hook: str, state: ModelState, x, v: dict, scalar_ok: bool = False):
-    """Call one effect hook as untrusted code: an exception, a wrong shape or a non-finite value is a UserError."""
-    try:
-        out = getattr(effect, hook)(state, x, v)
-    except (UserError, KeyboardInterrupt):
-        raise
-    except BaseException as exc:  # noqa: BLE001 - a plugin's bug (or its sys.exit) must not end the tool silently
-        raise UserError(f"{_where(effect)}: hook '{hook}' raised {type(exc).__name__}: {exc}; fix the effect's "
-                        f"code") from None
-    try:
-        arr = np.asarray(out, float)
-    except (TypeError, ValueError):
-        raise UserError(f"{_where(effect)}: hook '{hook}' returned {type(out).__name__}, not numbers; return an "
-                        f"array shaped like its input") from None
-    if not (scalar_ok and arr.ndim == 0):
-        try:
-            ok = np.broadcast_shapes(arr.shape, state.time_s.shape) == state.time_s.shape
-        except ValueError:
-            ok = False
-        if not ok:
-            raise UserError(f"{_where(effect)}: hook '{hook}' returned shape {arr.shape} for {state.time_s.shape} "
-                            f"samples; return an array shaped like its input")
-    finite_in = np.isfinite(state.time_s) & np.isfinite(np.asarray(x, float))   # garbage in is not the hook's
-    if not np.all(np.isfinite(arr) | ~finite_in):
-        raise UserError(f"{_where(effect)}: hook '{hook}' returned NaN or inf; return finite values (check the "
-                        f"effect's formula and its parameter bounds)")
-    return out
-
-
-def _where(effect: Effect) -> str:
-    src = getattr(type(effect), "__rollaway_source__", None)
-    return f"effect '{effect.name}'" + (f" ({src})" if src else "")
 
 
 def as_model(model_or_params) -> DrumModel:

@@ -6,6 +6,8 @@ from typing import List, Optional
 import numpy as np
 import typer
 
+from rollaway.cli import options as opt
+
 from rollaway.cli.output import FORMATS, write_table
 from rollaway.errors import UserError, check_choice
 from rollaway.hold import analytic_verdict
@@ -48,11 +50,8 @@ def check(
         help="regulation presets (fmvss135, unr13h, paper30, or 'all') and, without --analytic, scenario "
              "TOML files; default: fmvss135 unr13h"),
     analytic: bool = typer.Option(False, "--analytic", help="use the paper's analytic check (no simulation)"),
-    params: Optional[str] = typer.Option(None, "--params", metavar="MODEL",
-                                         help="parameter set name, parameter file or model file (.toml; default: "
-                                              "paper)"),
-    uncertainty: Optional[int] = typer.Option(None, "--uncertainty", metavar="N",
-                                              help="with --analytic: N draws from the model file's covariance; adds "
+    params: Optional[str] = opt.params_option(),
+    uncertainty: Optional[int] = opt.uncertainty_option("with --analytic: N draws from the model file's covariance; adds "
                                                    "the roll-away probability of each case"),
     fmt: str = typer.Option("table", "--format", metavar="FORMAT",
                             help="csv | json | table (every row carries its verdict PASS/FAIL)"),

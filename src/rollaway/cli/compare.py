@@ -5,13 +5,15 @@ from typing import List, Optional
 
 import typer
 
+from rollaway.cli import options as opt
+
 from rollaway.cli.identify_common import FORMAT_HELP, load_data, load_plugins, prepare_outputs, parse_effects, write_outputs
 
 
 def compare(
     data: str = typer.Argument(..., metavar="DATA_CSV", help="measurement CSV: test_id,direction,hand_force_N,time_s,drum_temp_C,"
                                          "torque_Nm[,ambient_C]"),
-    params: Optional[str] = typer.Option(None, "--params", metavar="SET", help="parameter set name or TOML file (default: paper)"),
+    params: Optional[str] = opt.params_option(),
     effect: List[str] = typer.Option([], "--effect", metavar="EFFECT", help="add an effect: NAME or NAME=param=value,... "
                                                           "(repeatable; unset parameters take typical values)"),
     effect_file: List[str] = typer.Option([], "--effect-file", metavar="FILE", help="Python file defining Effect subclasses"),

@@ -12,7 +12,7 @@ from rollaway.cli.identify_common import FORMAT_HELP, load_data, load_plugins, p
 
 def diagnose(
     data: str = typer.Argument(..., metavar="DATA_CSV", help="measurement CSV (see 'rollaway compare --help')"),
-    params: Optional[str] = typer.Option(None, "--params", metavar="SET", help="parameter set name, parameter file or model file (default: paper)"),
+    params: Optional[str] = opt.params_option(),
     effect_file: List[str] = typer.Option([], "--effect-file", metavar="FILE", help="Python file with extra candidate effects"),
     json_out: Optional[str] = typer.Option(None, "--json", metavar="FILE", help="write the diagnosis as JSON here"),
     report: Optional[str] = typer.Option(None, "--report", metavar="FILE", help="write a self-contained HTML report here"),

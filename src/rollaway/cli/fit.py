@@ -14,7 +14,7 @@ def fit(
     data: str = typer.Argument(..., metavar="DATA_CSV", help="measurement CSV (see 'rollaway compare --help')"),
     effect: List[str] = typer.Option(..., "--effect", metavar="EFFECT", help="effect to add: NAME or NAME=param=start,... "
                                                            "(repeatable, in ladder order)"),
-    params: Optional[str] = typer.Option(None, "--params", metavar="SET", help="parameter set name, parameter file or model file (default: paper)"),
+    params: Optional[str] = opt.params_option(),
     effect_file: List[str] = typer.Option([], "--effect-file", metavar="FILE", help="Python file defining Effect subclasses"),
     plot: Optional[str] = typer.Option(None, "--plot", metavar="FILE", help="draw the ladder and before/after curves to this PNG"),
     report: Optional[str] = typer.Option(None, "--report", metavar="FILE", help="write a self-contained HTML report here"),

@@ -7,11 +7,22 @@ DIRECTION = typer.Option("downhill", "--direction", metavar="DIRECTION", help="v
 MU_DRUM: Optional[float] = typer.Option(None, "--mu", help="shoe/drum friction μ_d [–] (default: the set's, 0.4)")
 T0_C: Optional[float] = typer.Option(None, "--t0-C", help="drum temperature when the lever is applied [°C]")
 DT_S = typer.Option(600.0, "--dt-s", help="time step of the printed series [s]")
-PARAMS: Optional[str] = typer.Option(
-    None, "--params", metavar="MODEL", help="parameter set name, parameter file or model file (.toml; default: paper)")
-UNCERTAINTY: Optional[int] = typer.Option(
-    None, "--uncertainty", metavar="N",
-    help="draw N parameter vectors from the model file's covariance: roll-away probability")
+MODEL_HELP = "parameter set name, parameter file or model file (.toml; default: paper)"
+
+
+def params_option(help: str = MODEL_HELP):
+    """``--params MODEL``: the drum model of a command (one flag, one metavar everywhere)."""
+    return typer.Option(None, "--params", metavar="MODEL", help=help)
+
+
+def uncertainty_option(help: str = "draw N parameter vectors from the model file's covariance: roll-away "
+                                   "probability"):
+    """``--uncertainty N``: draws from a model file's covariance."""
+    return typer.Option(None, "--uncertainty", metavar="N", help=help)
+
+
+PARAMS: Optional[str] = params_option()
+UNCERTAINTY: Optional[int] = uncertainty_option()
 SEED = typer.Option(0, "--seed", metavar="N", help="random seed of the --uncertainty draws")
 FORMAT = typer.Option("table", "--format", metavar="FORMAT", help="csv | json | table")
 SAVE_MODEL: Optional[str] = typer.Option(

@@ -6,12 +6,14 @@ from typing import Optional
 
 import typer
 
+from rollaway.cli import options as opt
+
 from rollaway.model_file import load_model
 
 
 def paper(
     out: Path = typer.Option(Path("renders/paper"), "--out", help="folder for the PNGs"),
-    params: Optional[str] = typer.Option(None, "--params", help="parameter set name, parameter file or model file (.toml; default: paper)"),
+    params: Optional[str] = opt.params_option(),
 ) -> None:
     """Draw the analogues of the paper's Figures 9–14 as PNGs: cooling, torque vs time, FMVSS check, μ_d, occupants."""
     from rollaway.errors import UserError

@@ -7,6 +7,8 @@ from typing import Optional
 
 import typer
 
+from rollaway.cli import options as opt
+
 from rollaway.cli.output import REPORT_FORMATS, echo_json, write_table
 from rollaway.errors import UserError, check_choice, ensure_parent_dir
 
@@ -72,11 +74,9 @@ def simulate(
     json_file: Optional[str] = typer.Option(None, "--json", metavar="FILE", help="also write the result as JSON here"),
     mode: str = typer.Option("fast", "--mode", metavar="MODE",
                              help="fast (event-driven skip while at rest) | fixed (plain 1 ms stepping)"),
-    params: Optional[str] = typer.Option(None, "--params", metavar="MODEL",
-                                         help="drum model for this run: a set name, parameter file or model file "
+    params: Optional[str] = opt.params_option("drum model for this run: a set name, parameter file or model file "
                                               "(.toml; replaces the scenario's 'params')"),
-    uncertainty: Optional[int] = typer.Option(None, "--uncertainty", metavar="N",
-                                              help="draw N parameter vectors from the model's covariance and "
+    uncertainty: Optional[int] = opt.uncertainty_option("draw N parameter vectors from the model's covariance and "
                                                    "simulate the --percentile draw"),
     percentile: float = typer.Option(5.0, "--percentile", metavar="Q",
                                      help="with --uncertainty: which draw to simulate, by its least margin "

@@ -6,6 +6,8 @@ from typing import Optional
 
 import typer
 
+from rollaway.cli import options as opt
+
 from rollaway.cli.output import REPORT_FORMATS, echo_json
 from rollaway.errors import UserError, check_choice
 
@@ -49,9 +51,9 @@ def sweep(
     quiet: bool = typer.Option(False, "--quiet", help="no progress bar"),
     no_plots: bool = typer.Option(False, "--no-plots", help="skip the PNG maps and design chart"),
     retry_failed: bool = typer.Option(False, "--retry-failed", help="simulate again the points that failed before"),
-    params: Optional[str] = typer.Option(None, "--params", metavar="MODEL", help="drum model of every point: a set name, parameter "
+    params: Optional[str] = opt.params_option("drum model of every point: a set name, parameter "
                                          "file or model file (.toml); replaces the base's set, keeps its T_0"),
-    uncertainty: Optional[int] = typer.Option(None, "--uncertainty", metavar="N", help="add each point's roll-away probability "
+    uncertainty: Optional[int] = opt.uncertainty_option("add each point's roll-away probability "
                                               "from N draws of the model's covariance (slow: one risk per point)"),
     fmt: str = typer.Option("text", "--format", metavar="FORMAT", help="text | json (the summary on stdout)"),
     fresh: bool = typer.Option(False, "--fresh", help="delete the results of an earlier sweep in --out and start over"),

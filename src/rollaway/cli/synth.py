@@ -6,6 +6,8 @@ from typing import List, Optional
 
 import typer
 
+from rollaway.cli import options as opt
+
 from rollaway.cli.identify_common import load_plugins, parse_effects
 from rollaway.errors import ensure_parent_dir
 
@@ -23,7 +25,7 @@ def synth(
     t0_C: float = typer.Option(200.0, "--t0-C", help="mean drum temperature at lever application [°C]"),
     dt_s: float = typer.Option(300.0, "--dt-s", help="sampling interval [s]"),
     duration_s: float = typer.Option(3600.0, "--duration-s", help="length of each test [s]"),
-    params: Optional[str] = typer.Option(None, "--params", help="parameter set name or TOML file (default: paper)"),
+    params: Optional[str] = opt.params_option(),
     effect_file: List[str] = typer.Option([], "--effect-file", help="Python file defining Effect subclasses"),
 ) -> None:
     """Write synthetic bench data (both directions, a sample every 5 min for an hour, Gaussian noise)."""
