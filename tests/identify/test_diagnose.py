@@ -1,4 +1,5 @@
 import json
+import re
 import time
 from pathlib import Path
 
@@ -89,7 +90,8 @@ def test_cli_diagnose_json_and_report(tmp_path, run_cli):
     assert [x["delta_bic"] for x in j["candidates"]] == sorted(x["delta_bic"] for x in j["candidates"])
     assert c["parameters"]["gap_m"]["ci95"][0] < 0.001 < c["parameters"]["gap_m"]["ci95"][1]
     html = (tmp_path / "d.html").read_text()
-    assert "data:image/png;base64," in html and "http://" not in html and "https://" not in html
+    assert html.count("Plotly.newPlot(") == 4 and "plotly.js v" in html          # figures drawn by inlined plotly.js
+    assert not re.search(r"<(script|link|img)[^>]+(src|href)=", html)             # nothing fetched from anywhere
     assert "verdict" in out
 
 

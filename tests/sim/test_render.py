@@ -65,3 +65,26 @@ def test_extension_keeps_the_result(tmp_path):
     b = simulate(s, render=tmp_path / "x.png")
     # the rendered run uses the car with its decorative geoms: the same physics to within one brake update
     assert a.outcome == b.outcome and a.rollaway_time_s == pytest.approx(b.rollaway_time_s, abs=0.02)
+
+
+def test_shadow_map_is_sized_to_the_frame():
+    """A power of two at or above the longer side (512–4096): 1024 for 640×480 keeps the driver's map at 4 MB."""
+    assert render.shadow_map_size(640, 480) == 1024
+    assert render.shadow_map_size(1920, 1080) == 2048
+    assert render.shadow_map_size(96, 64) == 512
+    assert render.shadow_map_size(3840, 2160) == 4096 and render.shadow_map_size(1024, 768) == 1024
+
+
+def test_render_buffers_fit_the_frame(tmp_path, monkeypatch):
+    """The off-screen buffer is the frame's size (not the model's 1280×720) and the shadow map follows it."""
+    seen = {}
+    real = render.mujoco.Renderer
+
+    def spy(model, *a, **k):
+        seen.update(off=(model.vis.global_.offwidth, model.vis.global_.offheight),
+                    shadow=model.vis.quality.shadowsize)
+        return real(model, *a, **k)
+    monkeypatch.setattr(render.mujoco, "Renderer", spy)
+    simulate(make_scenario(grade_pct=20, tyre_road_mu=0.3, duration_s=3), render=tmp_path / "r.png",
+             render_options={"size": (320, 200)})
+    assert seen == {"off": (320, 200), "shadow": 512}

@@ -68,7 +68,7 @@ class Ladder:
         ladder_report(self, path)
 
     def plot(self, path=None):
-        from rollaway.identify.report_figures import ladder_figure
+        from rollaway.figures.ladder import ladder_figure
         fig = ladder_figure(self)
         if path is not None:
             fig.savefig(path, dpi=110, bbox_inches="tight")

@@ -1,4 +1,4 @@
-"""Self-contained HTML reports of the bench workflow (figures embedded as PNG data; no network needed).
+"""Self-contained HTML reports of the bench workflow (interactive plotly.js figures inlined; no network needed).
 
 Each page reads as an engineer's page: the verdict and what it means for the design first
 (the FMVSS 135 case, 400 N on a 20 % grade, with the fitted model against the paper's), then
@@ -6,16 +6,22 @@ the evidence as real tables (errors, candidates with their leave-one-test-out sc
 statistics in the manner of lmfit's ``fit_report``: initial and fitted values, errors,
 evaluations, convergence, reduced χ², correlation matrix, bound warnings), then the figures.
 
+Figures are plotly.js specifications (:mod:`rollaway.identify.report_figures`) drawn in the
+browser; plotly.js itself is copied into the page from the installed ``plotly`` package (about
+5 MB), so the page works offline and the report is written in tens of milliseconds.
+
 The result objects are read defensively (``getattr`` with defaults), so fields added to them
 later do not break the pages.
 """
 from __future__ import annotations
 
-import base64
 import html
-import io
+import itertools
+import json
 import math
 import re
+from functools import lru_cache
+from pathlib import Path
 
 import numpy as np
 
@@ -25,7 +31,7 @@ CSS = ("body{font:15px/1.45 system-ui,sans-serif;max-width:1180px;margin:1.5em a
        "th{background:#f0f0f0}td:first-child,th:first-child{text-align:left}"
        ".verdict{font-size:1.15em;padding:.7em 1em;border-left:6px solid #3a7;background:#eef7f0}"
        ".verdict.bad{border-color:#c43;background:#fbeeee}.note{color:#555;font-size:.93em}"
-       "td.warn{color:#b30;text-align:left}img{max-width:100%}li{margin:.3em 0}.sub{color:#666}")
+       "td.warn{color:#b30;text-align:left}img{max-width:100%}.plot{width:100%}li{margin:.3em 0}.sub{color:#666}")
 
 DESIGN_CASE = {"preset": "fmvss135", "hand_force_N": 400.0, "grade_pct": 20.0, "occupants": 5,
                "initial_temp_C": 200.0, "duration_s": 300.0, "long_s": 3600.0}
@@ -39,12 +45,30 @@ def esc(text) -> str:
     return re.sub(r"\*([^*\s][^*]*)\*", r"<em>\1</em>", t)
 
 
-def png(fig) -> str:
-    import matplotlib.pyplot as plt
-    buf = io.BytesIO()
-    fig.savefig(buf, format="png", dpi=80, pil_kwargs={"compress_level": 1})   # fast zlib: 1/3 of the time
-    plt.close(fig)
-    return f'<img alt="figure" src="data:image/png;base64,{base64.b64encode(buf.getvalue()).decode()}">'
+_PLOT_IDS = itertools.count(1)
+PLOT_CONFIG = {"displaylogo": False, "responsive": True, "toImageButtonOptions": {"format": "png", "scale": 2}}
+
+
+def plot(fig: dict) -> str:
+    """A figure spec (``{"data": [...], "layout": {...}}``) as a div and the script that draws it."""
+    div = f"rollaway-plot-{next(_PLOT_IDS)}"
+    spec = json.dumps([fig["data"], fig["layout"], PLOT_CONFIG], separators=(",", ":"), allow_nan=False)
+    spec = spec.replace("</", "<\\/")          # test ids come from user files: never close the script early
+    return (f"<div class='plot' id='{div}'></div>"
+            f"<script>Plotly.newPlot('{div}',...{spec});</script>")
+
+
+@lru_cache(maxsize=1)
+def plotly_js() -> str:
+    """The text of plotly.min.js from the installed ``plotly`` package (found without importing it)."""
+    import importlib.util
+    from rollaway.errors import UserError
+    spec = importlib.util.find_spec("plotly")
+    path = Path(spec.submodule_search_locations[0]) / "package_data" / "plotly.min.js" if spec else None
+    if path is None or not path.is_file():
+        raise UserError("--report: the HTML reports need plotly.js from the 'plotly' package; "
+                        "run: python -m pip install plotly")
+    return path.read_text(encoding="utf-8")
 
 
 def table(head: list[str], rows: list[list], cls: list[str] | None = None) -> str:
@@ -66,10 +90,12 @@ def ul(items) -> str:
 
 
 def page(title: str, body: str) -> str:
+    script = f"<script>{plotly_js()}</script>" if "class='plot'" in body else ""
     return (f"<!DOCTYPE html><html><head><meta charset='utf-8'><title>{html.escape(title)}</title>"
-            f"<style>{CSS}</style></head><body><h1>{html.escape(title)}</h1>{body}"
-            "<p class='note'>rollaway bench report; self-contained, no network needed. The model is described "
-            "in docs/model.md.</p></body></html>")
+            f"<style>{CSS}</style>{script}</head><body><h1>{html.escape(title)}</h1>{body}"
+            "<p class='note'>rollaway bench report; self-contained, no network needed (plotly.js is included). "
+            "Figures: drag to zoom, double-click to reset, click a legend entry to hide it. "
+            "The model is described in docs/model.md.</p></body></html>")
 
 
 def write(path, text) -> None:
@@ -226,8 +252,8 @@ def comparison_report(cmp, path) -> None:
     body += "<h2>Where it fails</h2>" + ul(cmp.findings(limit=6))
     if design_tab:
         body += "<h2>Design case</h2>" + design_tab
-    body += "<h2>Signals</h2>" + png(signals_figure([(model_name(fit), fit)]))
-    body += "<h2>Residuals</h2>" + png(residual_figure(fit, noise))
+    body += "<h2>Signals</h2>" + plot(signals_figure([(model_name(fit), fit)]))
+    body += "<h2>Residuals</h2>" + plot(residual_figure(fit, noise))
     if fit.estimates:
         body += "<h2>Fitted parameters</h2>" + fit_statistics(fit, noise)
     write(path, page(f"rollaway compare: {data.source}", body))
@@ -281,16 +307,16 @@ def diagnosis_report(diag, path) -> None:
                "is better; about the number of samples when the model predicts down to the noise). Only "
                "candidates with ΔBIC below −10 are cross-validated.</p>")
     body += "<h2>Fit of the refined model</h2>" + fit_statistics(diag.refined, noise)
-    body += "<h2>Error ladder</h2>" + png(ladder_figure(Ladder(diag.data, fits)))
+    body += "<h2>Error ladder</h2>" + plot(ladder_figure(Ladder(diag.data, fits)))
     body += ("<h2>Signals: calibrated paper model (dashed) and refined (solid)</h2>"
-             + png(signals_figure([("calibrated paper model", diag.baseline), ("refined", diag.refined)])))
-    body += "<h2>Residuals of the calibrated paper model</h2>" + png(residual_figure(diag.baseline, noise))
+             + plot(signals_figure([("calibrated paper model", diag.baseline), ("refined", diag.refined)])))
+    body += "<h2>Residuals of the calibrated paper model</h2>" + plot(residual_figure(diag.baseline, noise))
     if diag.refined is not diag.baseline:
-        body += "<h2>Residuals of the refined model</h2>" + png(residual_figure(diag.refined, noise))
+        body += "<h2>Residuals of the refined model</h2>" + plot(residual_figure(diag.refined, noise))
     shape = getattr(diag, "shape", None)
     if shape:                       # "form": "partial": what the data want against the catalogue's form
-        from rollaway.identify.shape import shape_figure
-        body += "<h2>Form partial: the shape the data want</h2>" + png(shape_figure(shape, shape.get("effect",
+        from rollaway.identify.report_figures import shape_figure
+        body += "<h2>Form partial: the shape the data want</h2>" + plot(shape_figure(shape, shape.get("effect",
                                                                                                       verdict)))
     write(path, page(f"rollaway diagnose: {diag.data.source}", body))
 
@@ -307,12 +333,12 @@ def ladder_report(ladder, path) -> None:
     body = (f"<p class='verdict{'' if good else ' bad'}'>{esc(verdict)}</p><p>{esc(design)}</p>"
             "<h2>Error ladder</h2>" + table(["model", "torque RMSE [N·m]", "temp. RMSE [°C]",
                                              "ΔBIC vs calibrated paper model", "fitted parameters"], rows)
-            + png(ladder_figure(ladder)))
+            + plot(ladder_figure(ladder)))
     if design_tab:
         body += "<h2>Design case</h2>" + design_tab
     body += ("<h2>Fit of the last rung</h2>" + fit_statistics(ladder.final)
              + "<h2>Signals: calibrated paper model (dashed) and refined (solid)</h2>"
-             + png(signals_figure([("calibrated paper model", ladder.baseline), ("refined", ladder.final)])))
+             + plot(signals_figure([("calibrated paper model", ladder.baseline), ("refined", ladder.final)])))
     write(path, page(f"rollaway fit: {ladder.data.source}", body))
 
 

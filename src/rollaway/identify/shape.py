@@ -125,20 +125,3 @@ def shape_curves(effect: Effect, catalogue_fit, flex_fit, flex_cls, points: int 
     return {"hook": hook, "covariate": cov, "unit": COVARIATE_UNITS.get(cov, ""),
             "catalogue": {"x": x[order].tolist(), "factor": (np.broadcast_to(cat, x.shape)[order] / cat_ref).tolist()},
             "flexible": {"x": grid.tolist(), "factor": flex.tolist(), "knots": list(map(float, flex_cls.knots))}}
-
-
-def shape_figure(shape: dict, effect: str):
-    """The catalogue's factor and the data's (flexible) factor against the covariate."""
-    import matplotlib.pyplot as plt
-    fig, ax = plt.subplots(figsize=(6, 4))
-    ax.plot(shape["catalogue"]["x"], shape["catalogue"]["factor"], ".", ms=3, color="tab:blue",
-            label=f"catalogue form ({effect})")
-    ax.plot(shape["flexible"]["x"], shape["flexible"]["factor"], "-", color="tab:red", lw=2,
-            label="what the data want (linear spline)")
-    ax.plot(shape["flexible"]["knots"], np.interp(shape["flexible"]["knots"], shape["flexible"]["x"],
-                                                  shape["flexible"]["factor"]), "o", color="tab:red", ms=4)
-    ax.set(xlabel=f"{shape['covariate']} [{shape['unit']}]", ylabel=f"factor on {shape['hook']}",
-           title=f"{effect}: form partial — catalogue vs data")
-    ax.legend(fontsize=8)
-    fig.tight_layout()
-    return fig

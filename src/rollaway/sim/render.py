@@ -22,8 +22,10 @@ lasts at most :data:`MAX_AFTER_VIDEO_S` seconds of video.  The overlay shows the
 time and playback speed, the distance moved, the drum temperature (eq. 10), the rear-axle
 brake capacity against the demand T_req (eq. 23) and the status.
 
-Speed: frames are streamed to the encoder (MP4) or kept as 8-bit palette images (GIF), never
-as a list of full frames; multisampling is off by default (it costs ~3× under software GL).
+Speed and memory: frames are streamed to the encoder (MP4) or kept as 8-bit palette images (GIF),
+never as a list of full frames; multisampling is off by default (it costs ~3× under software GL);
+the off-screen buffer is the frame's size and the shadow map is sized to it
+(:func:`shadow_map_size`), which keeps a 640×480 render under 200 MB with Mesa's llvmpipe.
 
 Off-screen GL: with no ``DISPLAY``, :mod:`rollaway.sim` sets ``MUJOCO_GL=egl`` before MuJoCo
 is imported (``osmesa`` works too, set it yourself).
@@ -209,6 +211,16 @@ def _decorate(scene, data, info, origin: np.ndarray, s_view: float, view_half_m:
             _add_geom(scene, box, [0.07, 0.16, 0.08], p + R @ [x, y, z], R, rgba)
 
 
+def shadow_map_size(width: int, height: int) -> int:
+    """Side of the shadow map in texels: the next power of two at or above the frame's longer side, 512–4096.
+
+    The map is a square depth texture held by the GL driver (4 bytes a texel, so 64 MB at MuJoCo's
+    default 4096); a map finer than the picture adds memory and no visible detail.
+    """
+    side = max(int(width), int(height), 512)
+    return int(min(4096, 1 << (side - 1).bit_length()))
+
+
 def render_run(runner, result, path, size: tuple[int, int] | None = None, fps: float | None = None,
                after_s: float = AFTER_S, after_m: float = AFTER_M, multisample: int = 0) -> Path:
     """Render a finished :class:`rollaway.sim.run._Run` with its :class:`SimResult` to *path*."""
@@ -227,8 +239,8 @@ def render_run(runner, result, path, size: tuple[int, int] | None = None, fps: f
         times, speed = frame_times(float(t_rec[-1]), t_roll, fps)
     model = runner.model
     model.vis.quality.offsamples = int(multisample)
-    model.vis.global_.offwidth = max(model.vis.global_.offwidth, width)
-    model.vis.global_.offheight = max(model.vis.global_.offheight, height)
+    model.vis.quality.shadowsize = shadow_map_size(width, height)
+    model.vis.global_.offwidth, model.vis.global_.offheight = width, height   # buffers no larger than the frame
     data = mujoco.MjData(model)
     try:
         renderer = mujoco.Renderer(model, height=height, width=width, max_geom=2000)
