@@ -85,6 +85,8 @@ def load_effect_file(path: str | Path) -> list[str]:
         raise UserError(f"effect file '{path}' does not exist; give the path of a .py file defining an Effect "
                         f"subclass")
     mod_name = f"rollaway_user_effect_{abs(hash(str(path.resolve())))}"
+    from rollaway.effects.preflight import preflight_import
+    preflight_import(path)          # os._exit(), a crash or an endless loop at import: an error, not our end
     try:
         spec = importlib.util.spec_from_file_location(mod_name, path)
         if spec is None or spec.loader is None:
