@@ -19,10 +19,7 @@ class RatchetSlip(Effect):
         EffectParameter("slip_time_s", "s", neutral=1800.0, lower=0.0, upper=3600.0, initial=1650.0,
                         typical=1650.0, description="moment of the slip"),
     )
-
-    @classmethod
-    def is_neutral(cls, v):
-        return v.get("slip_m", 0.0) == 0.0
+    amplitude = "slip_m"          # no loss, no effect, whatever the time constant
 
     def displacement(self, state, u6_m, v):
         # a steep logistic instead of a hard step keeps the fit differentiable

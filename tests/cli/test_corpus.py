@@ -2,7 +2,8 @@
 
 Every file is either accepted (exit 0, no NaN printed) or refused with exit 2 and a message
 whose first line names the file and the key or line (the manifest's ``needles``) — never a
-traceback.  Cases marked ``xfail`` need the hook guard of the model chain.
+traceback.  Cases marked ``xfail`` need the hook guard of the model chain.  The plugin cases
+(``tests/corpus/plugin_cases.py``) are written from one template into a temporary folder.
 """
 import json
 import re
@@ -10,12 +11,20 @@ from pathlib import Path
 
 import pytest
 
+from tests.corpus.plugin_cases import CASES as PLUGIN_CASES
+from tests.corpus.plugin_cases import write_plugins
+
 CORPUS = Path(__file__).resolve().parents[1] / "corpus"
-CASES = json.loads((CORPUS / "manifest.json").read_text(encoding="utf-8"))["cases"]
+CASES = json.loads((CORPUS / "manifest.json").read_text(encoding="utf-8"))["cases"] + PLUGIN_CASES
+
+
+@pytest.fixture(scope="module")
+def plugins(tmp_path_factory):
+    return write_plugins(tmp_path_factory.mktemp("corpus") / "plugin")
 NAN = re.compile(r"\b-?nan\b", re.IGNORECASE)
 
 
-def command(case: dict, tmp_path: Path) -> list:
+def command(case: dict, tmp_path: Path, plugins: Path) -> list:
     path = CORPUS / case["file"]
     kind = case["file"].split("/")[0]
     if kind == "scenario":
@@ -27,7 +36,8 @@ def command(case: dict, tmp_path: Path) -> list:
     if kind == "bench":
         return ["compare", path]
     if kind == "plugin":
-        return ["compare", CORPUS / "plugin" / "data.csv", "--effect-file", path, "--effect", case["effect"]]
+        return ["compare", CORPUS / "plugin" / "data.csv", "--effect-file", plugins / path.name,
+                "--effect", case["effect"]]
     raise AssertionError(f"unknown corpus folder {kind}")
 
 
@@ -45,19 +55,19 @@ def _params(case):
     return pytest.param(case, id=case["file"], marks=marks)
 
 
-def test_corpus_is_large_and_covers_every_loader():
+def test_corpus_is_large_and_covers_every_loader(plugins):
     kinds = {c["file"].split("/")[0] for c in CASES}
     assert kinds == {"scenario", "params", "sweep", "bench", "plugin"}
     assert len(CASES) >= 100
     for c in CASES:
-        assert (CORPUS / c["file"]).exists(), c["file"]
+        assert (plugins / Path(c["file"]).name if c in PLUGIN_CASES else CORPUS / c["file"]).exists(), c["file"]
         assert c["expect"] in ("accept", "error")
         assert c["expect"] == "accept" or c["needles"], f"{c['file']}: an error case must say what it names"
 
 
 @pytest.mark.parametrize("case", [_params(c) for c in CASES])
-def test_corpus_case(case, run_cli, tmp_path):
-    code, out, err = run_cli(*command(case, tmp_path))
+def test_corpus_case(case, run_cli, tmp_path, plugins):
+    code, out, err = run_cli(*command(case, tmp_path, plugins))
     assert "Traceback" not in out + err
     if case["expect"] == "accept":
         assert code == 0, err

@@ -1,6 +1,7 @@
 """Rebuild the malformed-input corpus: ``python tests/corpus/build_corpus.py tests/corpus VALID_BENCH.csv``.
 
-The files and ``manifest.json`` are committed; this script documents how each was made (a case
+The files and ``manifest.json`` are committed (the effect-plugin cases live in ``plugin_cases.py``
+and are written at test time); this script documents how each was made (a case
 is added here, then the corpus rebuilt).  VALID_BENCH.csv: ``rollaway synth --hand-force-N 250
 --hand-force-N 340 --dt-s 900``.  It deletes and rewrites the folder it is given.
 """
@@ -233,67 +234,7 @@ add(B, "empty-test-id.csv", csv([cell(1, 0, "")] + lines[2:]), "error", ["line 2
 
 E = "plugin"
 (ROOT / E).mkdir(parents=True, exist_ok=True)
-(ROOT / E / "data.csv").write_text(VALID)
-GOOD = '''import numpy as np
-from rollaway.effects.base import Effect, EffectParameter
-
-
-class Humidity(Effect):
-    name = "humidity"
-    summary = "moisture raises the lining friction while the drum is cold"
-    physics = "mu = mu_d (1 + a exp(-(T_l - T_amb)/30 K))"
-    signature = "torque residual at the cold end"
-    reference = "corpus"
-    parameters = (EffectParameter("a", "-", neutral=0.0, lower=0.0, upper=1.0, initial=0.05),)
-
-    def friction(self, state, mu, v):
-        return HOOK
-'''
-OKHOOK = 'mu * (1 + v["a"] * np.exp(-(state.lining_temp_C - state.ambient_C) / 30.0))'
-def plug(**kw):
-    hook = kw.pop("hook", OKHOOK)
-    src = GOOD
-    for k, v in kw.items():
-        assert k in src, k
-        src = src.replace(k, v)
-    return src.replace("HOOK", hook)
-add(E, "ok-effect.py", plug(), "accept", effect="humidity")
-add(E, "exit-0.py", "import sys\nsys.exit(0)\n", "error", ["exit-0.py", "sys.exit(0)"], effect="humidity")
-add(E, "exit-3.py", plug() + "\nimport sys\nsys.exit(3)\n", "error", ["exit-3.py", "sys.exit(3)"], effect="humidity")
-add(E, "exit-string.py", "raise SystemExit('bye')\n", "error", ["exit-string.py"], effect="humidity")
-add(E, "base-exception.py", "class Boom(BaseException):\n    pass\n\n\nraise Boom('kaboom')\n", "error",
-    ["base-exception.py", "line 5", "Boom"], effect="humidity")
-add(E, "generator-exit.py", "raise GeneratorExit\n", "error", ["generator-exit.py"], effect="humidity")
-add(E, "value-error.py", "x = 1\nraise ValueError('no')\n", "error", ["value-error.py", "line 2"], effect="humidity")
-add(E, "import-missing.py", "import numpyy\n", "error", ["import-missing.py", "numpyy"], effect="humidity")
-add(E, "syntax.py", "def f(:\n    pass\n", "error", ["syntax.py", "line 1"], effect="humidity")
-add(E, "name-int.py", plug(**{'name = "humidity"': "name = 42"}), "error", ["name-int.py", "'name'"], effect="humidity")
-add(E, "name-none.py", plug(**{'name = "humidity"': "name = None"}), "error", ["name-none.py", "'name'"],
-    effect="humidity")
-add(E, "name-not-identifier.py", plug(**{'name = "humidity"': 'name = "hum idity"'}), "error",
-    ["name-not-identifier.py", "'name'"], effect="hum idity")
-add(E, "name-taken.py", plug(**{'name = "humidity"': 'name = "friction_temperature"'}), "error",
-    ["name-taken.py", "friction_temperature"], effect="friction_temperature")
-add(E, "no-parameters.py", plug(**{'parameters = (EffectParameter("a", "-", neutral=0.0, lower=0.0, upper=1.0, initial=0.05),)': "parameters = ()"}),
-    "error", ["no-parameters.py", "humidity"], effect="humidity")
-add(E, "parameters-garbage.py", plug(**{'parameters = (EffectParameter("a", "-", neutral=0.0, lower=0.0, upper=1.0, initial=0.05),)': 'parameters = ("a",)'}),
-    "error", ["parameters-garbage.py", "humidity"], effect="humidity")
-add(E, "parameter-bounds.py", plug(**{"upper=1.0": "upper=-1.0"}), "error", ["parameter-bounds.py"], effect="humidity")
-add(E, "parameter-nan-bounds.py", plug(**{"upper=1.0": "upper=float('nan')"}), "error",
-    ["parameter-nan-bounds.py"], effect="humidity")
-add(E, "hook-not-callable.py", plug(**{"    def friction(self, state, mu, v):\n        return HOOK\n": "    friction = 3\n"}),
-    "error", ["hook-not-callable.py", "'friction'"], effect="humidity")
-add(E, "no-effect-class.py", "X = 1\n", "error", ["no-effect-class.py", "Effect"], effect="humidity")
-add(E, "two-same-name.py", plug() + "\n\nclass Humidity2(Humidity):\n    pass\n", "error",
-    ["two-same-name.py", "'humidity'"], effect="humidity")
-add(E, "not-utf8.py", b"# \xff\xfe\nX = 1\n", "error", ["not-utf8.py"], effect="humidity")
-add(E, "hook-nan.py", plug(hook="mu * np.nan"), "error", ["hook-nan.py", "humidity"], effect="humidity")
-add(E, "hook-inf.py", plug(hook="mu * np.inf"), "error", ["hook-inf.py", "humidity"], effect="humidity")
-add(E, "hook-shape.py", plug(hook="np.ones(3)"), "error", ["hook-shape.py", "humidity"], effect="humidity")
-add(E, "hook-raises.py", plug(hook="1 / 0"), "error", ["hook-raises.py", "humidity"], effect="humidity")
-add(E, "hook-exits.py", plug(hook="__import__('sys').exit(0)"), "error", ["hook-exits.py", "humidity"],
-    effect="humidity")
-add(E, "hook-string.py", plug(hook="'fast'"), "error", ["hook-string.py", "humidity"], effect="humidity")
+(ROOT / E / "data.csv").write_text(VALID)     # the plugin files themselves: plugin_cases.py, written at test time
 
 (ROOT / "manifest.json").write_text(json.dumps({"cases": cases}, indent=1, ensure_ascii=True) + "\n")
 print(len(cases), "cases")

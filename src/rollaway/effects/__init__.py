@@ -62,6 +62,11 @@ def _validate_class(cls, where: str) -> type[Effect]:
         if not all(isinstance(b, (int, float)) and not isinstance(b, bool) and math.isfinite(b) for b in bounds):
             raise UserError(f"{where}: effect '{name}': parameter '{p.name}' needs finite numeric bounds, neutral "
                             f"and initial values")
+    amplitude = getattr(cls, "amplitude", "")
+    if amplitude not in ("", *seen):
+        raise UserError(f"{where}: effect '{name}': amplitude = {amplitude!r} is not one of its parameters "
+                        f"({', '.join(sorted(seen))}); name the parameter whose neutral value switches it off, or "
+                        f"leave it out"[:300])
     for hook in HOOKS:
         if not callable(getattr(cls, hook, None)):
             raise UserError(f"{where}: effect '{name}': '{hook}' must be a method (a hook), got "

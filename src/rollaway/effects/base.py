@@ -122,6 +122,9 @@ class Effect:
     # covariate of the effect's flexible (shape-free) form drawn by diagnose when the form mismatches:
     # "time_s", "lining_temp_C", "drum_temp_C" or "hand_force_N"; "" = chosen from the hook
     shape_covariate: ClassVar[str] = ""
+    # the parameter whose neutral value switches the effect off whatever the others are (e.g. a lost
+    # fraction, not its time constant); "" = the effect is neutral only when every parameter is
+    amplitude: ClassVar[str] = ""
 
     # -- bookkeeping -----------------------------------------------------------------
     @classmethod
@@ -144,7 +147,9 @@ class Effect:
 
     @classmethod
     def is_neutral(cls, v: dict[str, float]) -> bool:
-        return all(np.all(np.asarray(v.get(p.name, p.neutral)) == p.neutral) for p in cls.parameters)
+        """True if the values *v* leave the chain unchanged (the effect can be skipped)."""
+        params = [cls.parameter(cls.amplitude)] if cls.amplitude else cls.parameters
+        return all(np.all(np.asarray(v.get(p.name, p.neutral)) == p.neutral) for p in params)
 
     @classmethod
     def per_test_parameters(cls) -> list[str]:

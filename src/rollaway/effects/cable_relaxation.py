@@ -22,10 +22,7 @@ class CableRelaxation(Effect):
         EffectParameter("relaxation_time_s", "s", neutral=600.0, lower=30.0, upper=36000.0, initial=600.0,
                         typical=600.0, description="time constant of the loss"),
     )
-
-    @classmethod
-    def is_neutral(cls, v):
-        return v.get("displacement_loss_m", 0.0) == 0.0
+    amplitude = "displacement_loss_m"          # no loss, no effect, whatever the time constant
 
     def displacement(self, state, u6_m, v):
         return u6_m - v["displacement_loss_m"] * (1.0 - np.exp(-state.time_s / v["relaxation_time_s"]))

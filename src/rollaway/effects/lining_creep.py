@@ -21,10 +21,7 @@ class LiningCreep(Effect):
         EffectParameter("relaxation_time_s", "s", neutral=900.0, lower=30.0, upper=36000.0, initial=900.0,
                         typical=900.0, description="relaxation time constant"),
     )
-
-    @classmethod
-    def is_neutral(cls, v):
-        return v.get("relaxed_fraction", 0.0) == 0.0
+    amplitude = "relaxed_fraction"          # no loss, no effect, whatever the time constant
 
     def clamp_force(self, state, force_N, v):
         return force_N * (1.0 - v["relaxed_fraction"] * (1.0 - np.exp(-state.time_s / v["relaxation_time_s"])))

@@ -1,5 +1,0 @@
-class Boom(BaseException):
-    pass
-
-
-raise Boom('kaboom')
