@@ -33,14 +33,13 @@ from rollaway.effects.base import Effect, ModelState
 from rollaway.effects.hooks import call_hook
 from rollaway.errors import UserError
 from rollaway.parameters import BrakeParameters
+from rollaway.drum_parameters import BASELINE_BOUNDS, BASELINE_FREE, BASELINE_UNITS, apply, values_of
 from rollaway.physics import cooling, drum
 
 _PARAMETER_NAMES = frozenset(f.name for f in fields(BrakeParameters)) | {"cooling_time_constant_s"}
 
-# Free baseline parameters of a calibration and their bounds (μ_d: eqs. 17b–21; h: eq. 10) [assumed ranges]
-BASELINE_FREE = ("mu_drum", "heat_transfer_W_m2K")
-BASELINE_BOUNDS = {"mu_drum": (0.02, 1.0), "heat_transfer_W_m2K": (1.0, 400.0)}
-BASELINE_UNITS = {"mu_drum": "–", "heat_transfer_W_m2K": "W/(m² K)"}
+# Brake parameters a calibration may free, their bounds and units: rollaway.drum_parameters
+CHAIN_OVERRIDES = ("u6_slope_m_per_N", "u6_offset_m", "shoe_arm_ratio", "ambient_temp_C")
 
 
 @dataclass(frozen=True)
@@ -120,6 +119,7 @@ class DrumModel:
         self.name = name or (self.params.name + "".join(" + " + n for n in names))
         self.base = base or "paper"              # named set the parameters extend (model files)
         self.effect_files = dict(effect_files or {})   # effect name -> plugin file it came from
+        self.calibration: dict[str, str] = {}          # brake parameter -> what the bench data said of it
 
     # -- bookkeeping -------------------------------------------------------------------
     def __getattr__(self, name: str):
@@ -174,20 +174,24 @@ class DrumModel:
                     provenance=self.provenance, base=self.base, effect_files=self.effect_files)
         same_name = self.name == (self.params.name + "".join(" + " + e.name for e in self.effects))
         args.update(kw)
-        return DrumModel(**args, name=None if same_name else self.name)
+        out = DrumModel(**args, name=None if same_name else self.name)
+        out.calibration = dict(self.calibration)
+        return out
 
     def fitted_values(self) -> dict[str, float]:
-        """Every value a calibration may move: μ_d, h and the effects' parameters."""
-        return {"mu_drum": self.params.mu_drum, "heat_transfer_W_m2K": self.params.heat_transfer_W_m2K,
-                **self.values}
+        """Every value a calibration may move: the brake parameters (:mod:`rollaway.drum_parameters`) and
+        the effects' parameters."""
+        return {**values_of(self.params), **self.values}
 
     def bounds(self, name: str) -> tuple[float, float]:
         """Physical bounds of a free parameter (baseline or ``effect.parameter``)."""
         if name in BASELINE_BOUNDS:
             lo, hi = BASELINE_BOUNDS[name]
+            p = self.params
             if name == "mu_drum":   # never enter the self-locking region (eqs. 18–21)
-                p = self.params
                 hi = min(hi, 0.95 * p.shoe_arm_normal_m / max(p.shoe_arm_friction_m, 1e-12))
+            elif name == "shoe_arm_ratio":
+                hi = min(hi, 0.95 / max(p.mu_drum, 1e-12))
             return lo, hi
         eff, par = name.split(".", 1)
         spec = self.effect(eff).parameter(par)
@@ -207,10 +211,10 @@ class DrumModel:
                         + (", ".join(e.name for e in self.effects) or "none"))
 
     def with_draw(self, draw: dict) -> "DrumModel":
-        """This model with some fitted values replaced (``mu_drum``, ``heat_transfer_W_m2K``, effect values)."""
+        """This model with some fitted values replaced (brake parameters such as ``mu_drum``, effect values)."""
         base = {k: v for k, v in draw.items() if k in BASELINE_FREE}
         eff = {k: v for k, v in draw.items() if k not in BASELINE_FREE}
-        out = self.replace_params(**base) if base else self
+        out = self.with_params(apply(self.params, base)) if base else self
         return out.with_values(eff) if eff else out
 
     # -- the chain ---------------------------------------------------------------------
@@ -265,15 +269,26 @@ class DrumModel:
         override the model's for this call (fits); *drum_temp_C*: a drum temperature already
         computed with the same inputs (fits reuse the temperature channel).
         """
+        brake = {k: np.asarray(values[k], float) for k in CHAIN_OVERRIDES if values and k in values}
+        if ambient_C is None and "ambient_temp_C" in brake:
+            ambient_C = brake["ambient_temp_C"]
         active = self.active(values)
         if not active:
             return self._baseline(time_s, hand_force_N, direction, mu_drum, gap_m, initial_temp_C, ambient_C,
-                                  heat_transfer_W_m2K, drum_temp_C)
+                                  heat_transfer_W_m2K, drum_temp_C, brake)
         return self._with_effects(active, time_s, hand_force_N, direction, mu_drum, gap_m, initial_temp_C,
-                                  ambient_C, heat_transfer_W_m2K, test_index, values, drum_temp_C, test_ids)
+                                  ambient_C, heat_transfer_W_m2K, test_index, values, drum_temp_C, test_ids, brake)
+
+    def _lever(self, hand_force_N, brake: dict):
+        """u_6 from the hand force, eq. (24), and the friction arm l_fr, with calibrated overrides in *brake*."""
+        p = self.params
+        u6 = drum.lining_displacement_m(hand_force_N, brake.get("u6_slope_m_per_N", p.u6_slope_m_per_N),
+                                        brake.get("u6_offset_m", p.u6_offset_m))                  # eq. (24)
+        arm = p.shoe_arm_friction_m if "shoe_arm_ratio" not in brake else brake["shoe_arm_ratio"] * p.shoe_arm_normal_m
+        return u6, arm
 
     def _baseline(self, time_s, hand_force_N, direction, mu_drum, gap_m, initial_temp_C, ambient_C,
-                  heat_transfer_W_m2K, drum_temp_C) -> BrakeSeries:
+                  heat_transfer_W_m2K, drum_temp_C, brake=None) -> BrakeSeries:
         """The paper's chain, Ishak et al. 2018 eqs. (10), (16a/b), (17b), (18)–(21), (24)."""
         p = self.params
         mu = p.mu_drum if mu_drum is None else np.asarray(mu_drum, float)
@@ -282,10 +297,10 @@ class DrumModel:
                                       heat_transfer_W_m2K=heat_transfer_W_m2K)
                 if drum_temp_C is None else np.asarray(drum_temp_C, float))
         dT = cooling.temperature_change_K(temp, t0)                                           # ΔT, eq. (16)
-        u6 = drum.lining_displacement_m(hand_force_N, p.u6_slope_m_per_N, p.u6_offset_m)   # eq. (24)
+        u6, arm_friction_m = self._lever(hand_force_N, brake or {})                          # eq. (24)
         f0 = self.unenergised_force(u6, dT, p.lining_modulus_Pa, p.gap_m if gap_m is None else np.asarray(gap_m, float))
         factor = drum.self_energising_factor(mu, direction_to_sign(direction), p.shoe_arm_normal_m,
-                                             p.shoe_arm_friction_m)                        # eqs. (18)–(21)
+                                             arm_friction_m)                               # eqs. (18)–(21)
         f_l = drum.normal_force_N(f0, factor)
         torque = drum.brake_torque_Nm(mu, f_l, p.drum_radius_m)                             # eq. (17b)
         shape = np.broadcast_shapes(np.shape(time_s), np.shape(temp), np.shape(f_l))
@@ -305,7 +320,7 @@ class DrumModel:
             lining_thickness_m=p.lining_thickness_m, gap_m=gap_m)
 
     def _with_effects(self, active, time_s, hand_force_N, direction, mu_drum, gap_m, initial_temp_C, ambient_C,
-                      heat_transfer_W_m2K, test_index, values, drum_temp_C, test_ids=None) -> BrakeSeries:
+                      heat_transfer_W_m2K, test_index, values, drum_temp_C, test_ids=None, brake=None) -> BrakeSeries:
         p = self.params
         st = self.state(time_s, hand_force_N, direction, mu_drum=mu_drum, initial_temp_C=initial_temp_C,
                         ambient_C=ambient_C, heat_transfer_W_m2K=heat_transfer_W_m2K, test_index=test_index,
@@ -329,7 +344,7 @@ class DrumModel:
             lining = call_hook(e, "lining_temperature", st, lining, v)
         st.lining_temp_C = lining
         dT = cooling.temperature_change_K(st.drum_temp_C, st.initial_temp_C)   # ΔT of the drum, eq. (16)
-        u6 = drum.lining_displacement_m(st.hand_force_N, p.u6_slope_m_per_N, p.u6_offset_m)   # eq. (24)
+        u6, arm_friction_m = self._lever(st.hand_force_N, brake or {})         # eq. (24)
         modulus = p.lining_modulus_Pa
         gap = p.gap_m if gap_m is None else np.asarray(gap_m, float)
         for e, v in active:                                                     # steps 3–4
@@ -349,7 +364,7 @@ class DrumModel:
         mu = np.broadcast_to(np.asarray(st.mu_drum, float), shape)
         for e, v in active:                                                     # step 6
             mu = call_hook(e, "friction", st, mu, v)
-        factor = drum.self_energising_factor(mu, st.sign, p.shoe_arm_normal_m, p.shoe_arm_friction_m)  # step 7
+        factor = drum.self_energising_factor(mu, st.sign, p.shoe_arm_normal_m, arm_friction_m)  # step 7
         f_l = drum.normal_force_N(f0, factor)
         torque = drum.brake_torque_Nm(mu, f_l, p.drum_radius_m)                 # step 8, eq. (17b)
         for e, v in active:

@@ -18,8 +18,14 @@ A model file is a parameter file (``extends`` + values that differ, see
     [provenance]                      # where the values came from (free-form scalars)
     data_file = "bench.csv"
 
+    [calibration]                     # per brake parameter: fitted, fixed (and why) or not tested
+    mu_drum = "fitted: 0.381 ± 0.004"
+    shoe_arm_ratio = "not tested: 0.857 — only downhill tests"
+
 Every name is validated (unknown effect, parameter or table: an error naming the file and
 key, with the closest match); ``--params FILE.toml`` accepts a model file in every command.
+``shoe_arm_ratio`` (l_fr/l_f) in ``[covariance]`` and ``[calibration]`` is the set's
+``shoe_arm_friction_m / shoe_arm_normal_m``.
 """
 from __future__ import annotations
 
@@ -34,7 +40,7 @@ from rollaway.errors import UserError, read_toml, suggest
 from rollaway.model import BASELINE_FREE, Covariance, DrumModel
 from rollaway.parameters import PARAMETER_SETS, SPEC_BY_NAME, BrakeParameters, load_parameters, parameters_from_mapping
 
-TABLES = ("effects", "covariance", "provenance")
+TABLES = ("effects", "covariance", "provenance", "calibration")
 
 
 def load_model(source: str | Path | None = None) -> DrumModel:
@@ -66,7 +72,21 @@ def model_from_mapping(data: dict, where: str = "model", base_dir: Path | None =
         model.covariance = _covariance(tables["covariance"], model, where)
     if "provenance" in tables:
         model.provenance = _provenance(tables["provenance"], where)
+    if "calibration" in tables:
+        model.calibration = _calibration(tables["calibration"], where)
     return model
+
+
+def _calibration(table, where: str) -> dict:
+    from rollaway.drum_parameters import BASELINE_FREE
+    table = _table(table, where, "calibration")
+    for key, value in table.items():
+        if key not in BASELINE_FREE:
+            raise UserError(f"{where}: unknown key 'calibration.{key}'{suggest(key, BASELINE_FREE)}; [calibration] "
+                            f"has one line per brake parameter: {', '.join(BASELINE_FREE)}")
+        if not isinstance(value, str):
+            raise UserError(f"{where}: key 'calibration.{key}' must be text, e.g. \"fitted: 0.38 ± 0.01\"")
+    return dict(table)
 
 
 def _table(value, where: str, key: str) -> dict:
@@ -215,6 +235,9 @@ def model_to_toml(model: DrumModel, comment: str = "") -> str:
     if model.provenance:
         lines += ["", "[provenance]"]
         lines += [f"{k} = {_value(v)}" for k, v in model.provenance.items()]
+    if getattr(model, "calibration", None):
+        lines += ["", "[calibration]", "# what the bench data determined, per brake parameter (rollaway.drum_parameters)"]
+        lines += [f"{k} = {_value(v)}" for k, v in model.calibration.items()]
     return "\n".join(lines) + "\n"
 
 

@@ -73,46 +73,44 @@ def _drum_temperature(t, t0, amb, h, p, emissivity=0.0):
     return temp[idx, cols] * (1 - frac) + temp[idx + 1, cols] * frac
 
 
-def generate(effects=(), *, sampling="5min", seed=0, n_forces=4, directions=("downhill", "uphill"),
-             duration_s=3600.0, t0_range=(100.0, 300.0), noise_torque_Nm=8.0, noise_torque_rel=0.0,
-             noise_temp_C=1.5, tail_dof=4.0, mu=0.37, h=34.0, ambient_drift_C=0.0) -> Measurements:
-    """Bench data with *effects* hidden (names of ``EFFECTS``); Student-t noise with *tail_dof*
-    degrees of freedom scaled to the given standard deviations (``tail_dof=None``: Gaussian)."""
-    p = paper()
-    rng = np.random.default_rng(seed)
-    forces = np.linspace(190.0, 350.0, n_forces)
-    rows = {k: [] for k in ("id", "dir", "F", "t", "t0", "amb")}
-    for d in directions:
-        for f in forces:
-            t = _times(rng, sampling, duration_s)
-            t0 = rng.uniform(*t0_range)
-            rows["id"] += [f"{d[0].upper()}{int(f)}"] * t.size
-            rows["dir"] += [d] * t.size
-            rows["F"] += [f] * t.size
-            rows["t"] += list(t)
-            rows["t0"] += [t0] * t.size
-            rows["amb"] += list(27.0 + ambient_drift_C * (t / duration_s - 0.5))
-    ids, dirs = np.array(rows["id"]), np.array(rows["dir"])
-    F, t, t0, amb = (np.array(rows[k], float) for k in ("F", "t", "t0", "amb"))
-    tests, test_of = np.unique(ids, return_inverse=True)
+# Drums that are not the paper's: ordinary departures a bench engineer meets (keys: Table 1 names,
+# plus "u6_slope"/"u6_offset" for eq. (24) and "ambient_C" for the lab's air).
+OTHER_DRUMS = {
+    "radius_100mm": {"drum_radius_m": 0.100},
+    "arm_80mm": {"shoe_arm_normal_m": 0.080},
+    "eq24_own": {"u6_slope": 4.3e-7, "u6_offset": -2.4e-5},
+    "thick_soft_lining": {"lining_thickness_m": 0.005, "lining_modulus_Pa": 1.7e8},
+    "heavy_drum": {"drum_volume_m3": 9.5e-4},
+    "all_together": {"drum_radius_m": 0.095, "shoe_arm_normal_m": 0.075, "u6_slope": 3.6e-7, "u6_offset": -1.0e-5,
+                     "lining_thickness_m": 0.0045, "lining_modulus_Pa": 2.4e8, "drum_volume_m3": 8.4e-4,
+                     "ambient_C": 21.0},
+}
+
+
+def truth_parameters(drum: dict | None = None):
+    """The paper's set with *drum*'s departures (Table 1 names); eq. (24) and ambient returned apart."""
+    import dataclasses
+    d = dict(drum or {})
+    slope, offset, amb = d.pop("u6_slope", 3.89e-7), d.pop("u6_offset", -1.5e-5), d.pop("ambient_C", 27.0)
+    return dataclasses.replace(paper(), **d), slope, offset, amb
+
+
+def true_torque(F, t, direction, *, drum=None, mu=0.37, h=34.0, t0=200.0, effects=()):
+    """The generator's noiseless torque of one drum at hand force *F* over times *t* (hidden *effects* included,
+    per-test transducer offsets excluded: they are not on the road)."""
+    p, slope, offset, amb = truth_parameters(drum)
+    t = np.asarray(t, float)
     e = set(effects)
-    # drum temperature: eq. (10), or with radiation; a drifting ambient enters through the ODE (Euler, 1 s)
-    if ambient_drift_C:
-        temp = np.empty_like(t)
-        cap = p.drum_density_kg_m3 * p.drum_specific_heat_J_kgK * p.drum_volume_m3
-        for k in range(len(tests)):
-            r = np.flatnonzero(test_of == k)
-            fine = np.arange(0.0, t[r].max() + 1.0, 1.0)
-            a = np.interp(fine, t[r], amb[r])
-            y = np.empty_like(fine)
-            y[0] = t0[r[0]]
-            for i in range(1, fine.size):
-                y[i] = y[i - 1] - h * p.cooled_area_m2 * (y[i - 1] - 0.5 * (a[i] + a[i - 1])) / cap
-            temp[r] = np.interp(t[r], fine, y)
-    else:
-        temp = _drum_temperature(t, t0, amb, h, p, 0.8 if "radiation" in e else 0.0)
+    temp = _drum_temperature(t, np.full(t.shape, t0), np.full(t.shape, amb), h, p, 0.8 if "radiation" in e else 0.0)
+    n = t.shape
+    return _torque(p, slope, offset, np.full(n, float(F)), t, np.full(n, t0), temp, np.full(n, amb),
+                   np.full(n, direction), e, mu)
+
+
+def _torque(p, u6_slope, u6_offset, F, t, t0, temp, amb, dirs, e, mu):
+    """Noiseless torque of one drum with the hidden effects *e* (the road's torque: no per-test offsets)."""
     dT = temp - t0
-    u6 = 3.89e-7 * F - 1.5e-5                                   # eq. (24)
+    u6 = u6_slope * F + u6_offset                               # eq. (24)
     if "cable_exponential" in e:
         u6 = u6 - 8e-6 * (1 - np.exp(-t / 600.0))
     if "ratchet_step" in e:
@@ -144,6 +142,49 @@ def generate(effects=(), *, sampling="5min", seed=0, n_forces=4, directions=("do
     torque = m * fl * p.drum_radius_m                            # eq. (17b)
     if "periodic_disturbance" in e:
         torque = torque * (1 + 0.04 * np.sin(2 * np.pi * t / 1500.0))
+    return torque
+
+def generate(effects=(), *, sampling="5min", seed=0, n_forces=4, directions=("downhill", "uphill"),
+             duration_s=3600.0, t0_range=(100.0, 300.0), noise_torque_Nm=8.0, noise_torque_rel=0.0,
+             noise_temp_C=1.5, tail_dof=4.0, mu=0.37, h=34.0, ambient_drift_C=0.0, drum: dict | None = None,
+             forces=None) -> Measurements:
+    """Bench data with *effects* hidden (names of ``EFFECTS``); Student-t noise with *tail_dof*
+    degrees of freedom scaled to the given standard deviations (``tail_dof=None``: Gaussian).
+    *drum*: departures from the paper's drum (see ``OTHER_DRUMS``); *forces*: the hand forces [N]."""
+    p, u6_slope, u6_offset, amb0 = truth_parameters(drum)
+    rng = np.random.default_rng(seed)
+    forces = np.linspace(190.0, 350.0, n_forces) if forces is None else np.asarray(forces, float)
+    rows = {k: [] for k in ("id", "dir", "F", "t", "t0", "amb")}
+    for d in directions:
+        for f in forces:
+            t = _times(rng, sampling, duration_s)
+            t0 = rng.uniform(*t0_range)
+            rows["id"] += [f"{d[0].upper()}{int(f)}"] * t.size
+            rows["dir"] += [d] * t.size
+            rows["F"] += [f] * t.size
+            rows["t"] += list(t)
+            rows["t0"] += [t0] * t.size
+            rows["amb"] += list(amb0 + ambient_drift_C * (t / duration_s - 0.5))
+    ids, dirs = np.array(rows["id"]), np.array(rows["dir"])
+    F, t, t0, amb = (np.array(rows[k], float) for k in ("F", "t", "t0", "amb"))
+    tests, test_of = np.unique(ids, return_inverse=True)
+    e = set(effects)
+    # drum temperature: eq. (10), or with radiation; a drifting ambient enters through the ODE (Euler, 1 s)
+    if ambient_drift_C:
+        temp = np.empty_like(t)
+        cap = p.drum_density_kg_m3 * p.drum_specific_heat_J_kgK * p.drum_volume_m3
+        for k in range(len(tests)):
+            r = np.flatnonzero(test_of == k)
+            fine = np.arange(0.0, t[r].max() + 1.0, 1.0)
+            a = np.interp(fine, t[r], amb[r])
+            y = np.empty_like(fine)
+            y[0] = t0[r[0]]
+            for i in range(1, fine.size):
+                y[i] = y[i - 1] - h * p.cooled_area_m2 * (y[i - 1] - 0.5 * (a[i] + a[i - 1])) / cap
+            temp[r] = np.interp(t[r], fine, y)
+    else:
+        temp = _drum_temperature(t, t0, amb, h, p, 0.8 if "radiation" in e else 0.0)
+    torque = _torque(p, u6_slope, u6_offset, F, t, t0, temp, amb, dirs, e, mu)
     if "zero_offset" in e:
         torque = torque + rng.normal(0.0, 25.0, len(tests))[test_of]
 
@@ -156,5 +197,6 @@ def generate(effects=(), *, sampling="5min", seed=0, n_forces=4, directions=("do
     out = Measurements(ids, dirs, F, t, np.round(temp_m, 3), np.round(torque_m, 3),
                        amb if ambient_drift_C else None, source=f"independent({sampling}, seed={seed})")
     out.truth = {"mu_drum": mu, "heat_transfer_W_m2K": h, "initial_temp_C": t0, "effects": list(effects),
+                 "drum": dict(drum or {}),
                  "noise_torque_Nm": noise_torque_Nm, "noise_temp_C": noise_temp_C}
     return out

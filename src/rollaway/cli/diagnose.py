@@ -24,9 +24,15 @@ def diagnose(
     noise_temp_C: Optional[float] = typer.Option(None, "--noise-temp-C", min=0.0, metavar="CELSIUS",
                                                  help="drum-temperature noise σ of the instrument [°C] (default: "
                                                       "estimated from the data)"),
+    free: List[str] = typer.Option([], "--free", metavar="NAME",
+                                   help="brake parameter to fit (repeat; replaces the automatic choice): mu_drum, "
+                                        "u6_slope_m_per_N, u6_offset_m, shoe_arm_ratio, heat_transfer_W_m2K, "
+                                        "ambient_temp_C"),
+    fix: List[str] = typer.Option([], "--fix", metavar="NAME", help="brake parameter to hold at its value (repeat)"),
 ) -> None:
-    """Calibrate μ_d, h and each test's T_0, select catalogue effects forward (BIC and K-fold
-    cross-validation by test), and say which effects are missing (or 'none') with the evidence."""
+    """Calibrate your drum (the brake parameters these data identify, each test's T_0), then select
+    catalogue effects forward (BIC and leave-one-test-out prediction) for what it leaves, and say which
+    effects are missing (or 'none') with the evidence and an identifiability report."""
     from rollaway.identify.diagnose import diagnose as run
 
     from rollaway.cli.output import REPORT_FORMATS
@@ -34,12 +40,12 @@ def diagnose(
     check_choice(fmt, REPORT_FORMATS, "--format")
     prepare_outputs(report=report, json_out=json_out, save_model=save_model)
     load_plugins(effect_file)
-    diag = run(load_data(data), params, noise_torque_Nm=noise_torque_Nm or None, noise_temp_C=noise_temp_C or None)
+    diag = run(load_data(data), params, noise_torque_Nm=noise_torque_Nm or None, noise_temp_C=noise_temp_C or None,
+               free=free or None, fix=fix)
     write_outputs(diag, report=report, json_out=json_out, fmt=fmt)
     if save_model:
-        from rollaway.identify.export import save_fit
-        typer.echo(f"model: {save_fit(diag.refined, save_model, data, 'diagnose')} (paper chain + the verdict's "
-                   f"effects; use it with --params)")
+        typer.echo(f"model: {diag.save_model(save_model, data)} (your drum + the verdict's effects; use it with "
+                   f"--params)", err=fmt == "json")
 
 
 def register(app: typer.Typer) -> None:

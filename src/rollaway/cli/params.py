@@ -26,12 +26,20 @@ def params(
                     for k in d],
         "source": [SPEC_BY_NAME[k].source for k in d],
     }
+    if model.calibration:            # a calibrated model: what the bench data said of each brake parameter
+        where = {"shoe_arm_ratio": "shoe_arm_friction_m"}
+        cols["calibration"] = [model.calibration.get(k, "") for k in d]
+        for k, text in model.calibration.items():
+            if where.get(k, k) in d:
+                cols["calibration"][list(d).index(where.get(k, k))] = f"{k} {text}" if k in where else text
     for e in model.effects:          # a model file's effects: their values, after the set's
         for par in e.parameters:
             key = f"{e.name}.{par.name}"
             for col, val in (("name", key), ("symbol", ""), ("value", float(model.values[key])), ("unit", par.unit),
                              ("assumed", ""), ("source", f"effect '{e.name}' ({model.name})")):
                 cols[col].append(val)
+            if "calibration" in cols:
+                cols["calibration"].append("")
     write_table(cols, fmt)
 
 

@@ -14,7 +14,7 @@ class TorqueZeroOffset(Effect):
                  "unrelated to hand force, direction or temperature; the drum-temperature channel is unchanged")
     reference = ("HBM/ISO 376 practice for torque transducers (zero-point stability); Doebelin, Measurement "
                  "Systems, 5th ed. 2004, §4 (zero drift of strain-gauge bridges)")
-    parameters = (EffectParameter("offset_Nm", "N·m", neutral=0.0, lower=-300.0, upper=300.0, initial=0.0,
+    parameters = (EffectParameter("offset_Nm", "N·m", neutral=0.0, lower=-3000.0, upper=3000.0, initial=0.0,
                                   typical=25.0, per_test=True,
                                   description="zero offset of the torque reading in each test"),)
 

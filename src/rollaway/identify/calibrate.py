@@ -66,6 +66,8 @@ class FitResult:
     variance_factor: dict = field(default_factory=dict)        # channel → Σ(r/σ)²/dof (1 if σ is right)
     n_per_test: int = 0                        # per-test effect parameters (T_0 excluded)
     fit_info: dict = field(default_factory=dict)   # for reports: initial values, evaluations, convergence
+    jacobian: np.ndarray | None = None          # ∂(standardised, projected residual)/∂(value) of *names*
+    covariance: object | None = None            # a Covariance set after the fit (e.g. with prior-fixed parameters)
 
     @property
     def effects(self) -> list[str]:
@@ -255,7 +257,8 @@ def _result(model, data, sol, prob, names, families, statistics=True) -> FitResu
                      n_per_test=sum(data.n_tests for f in families if f != INITIAL_TEMP),
                      fit_info={"stages": [{"channel": "joint (temperature + torque)", "names": list(names),
                                            "correlation": None if corr is None else np.asarray(corr).tolist(),
-                                           "nfev": int(getattr(sol, "nfev", 0)), "success": True}]})
+                                           "nfev": int(getattr(sol, "nfev", 0)), "success": True}]},
+                     jacobian=None if jac is None else jac / sol.scale[None, :])
 
 
 def _neutral_bound(model, name, v) -> bool:
@@ -280,6 +283,26 @@ def _covariance(jac: np.ndarray) -> np.ndarray:
         loads = np.abs(v[:, bad]).max(axis=1) > 1e-6
         cov = np.where(np.outer(loads, loads), np.inf, (v[:, good] / w[good]) @ v[:, good].T)
     return cov
+
+
+def jacobian_at(fit: FitResult, names: list[str]) -> np.ndarray:
+    """∂(standardised residual)/∂(value) of *names* (freed or not) at the fit's values, the per-test
+    values profiled out: the sensitivity of the data to parameters the fit held fixed."""
+    from rollaway.identify.model import DrumPlan
+    m = fit.model
+    brake = [n for n in names if "." not in n]
+    plan = DrumPlan(m.params, tuple(set(m.free) | set(brake)))
+    model = BenchModel(plan, m.effects)
+    vals = {**model.neutral_values(), **fit.values}
+    families = [f for f in model.per_test_parameters() if f in fit.values]
+    w_t, w_q = _noise_weights(fit.data, model, vals)
+    prob = Problem(model, fit.data, names, families, vals, w_t, w_q)
+    r = prob.profile(vals)[0]
+    lo = np.array([model.bounds(n)[0] for n in names])
+    hi = np.array([model.bounds(n)[1] for n in names])
+    x = np.array([vals[n] for n in names], float)
+    scale = np.maximum(np.abs(x), 1e-3 * (hi - lo))
+    return prob.projected_jacobian(vals, r, lo, hi, scale) / scale[None, :]
 
 
 def evaluate(data: Measurements, effects=(), params=None, values: dict | None = None) -> FitResult:

@@ -24,12 +24,13 @@ import numpy as np
 
 from rollaway.effects import available_effects, get_effect
 from rollaway.identify.calibrate import FitResult, calibrate, evaluate
+from rollaway.identify.drum import DrumCalibration, calibrate_drum, predictive_covariance, recheck
 from rollaway.identify.fitting import single_blas_thread
 from rollaway.identify.measurements import Measurements
 from rollaway.identify.noise import Noise, noise_estimate
 from rollaway.identify.residuals import association, trend_words
-from rollaway.identify.selection import (BIC_THRESHOLD, Candidate, weighted_chi2, cv_score, eliminate, exchange, folds,
-                                         forward_step, structure)
+from rollaway.identify.selection import (BIC_THRESHOLD, Candidate, cv_score, eliminate, exchange, folds, forward_step,
+                                         has_per_test, per_test_signature, structure, weighted_chi2)
 from rollaway.jsonsafe import to_jsonable
 
 INDISTINGUISHABLE_BIC = 6.0  # candidates within this ΔBIC of the best cannot be told apart
@@ -55,6 +56,7 @@ class Diagnosis:
     effects: list[dict] = field(default_factory=list)     # selected, in order: {"effect", "form", ...}
     steps: list[dict] = field(default_factory=list)       # forward-selection log
     shape: dict | None = None                              # flexible form of a "partial" effect
+    drum: DrumCalibration | None = None                    # which brake parameters the data identify
 
     def as_dict(self) -> dict:
         def rm(f):
@@ -70,7 +72,8 @@ class Diagnosis:
                 "indistinguishable_from": self.indistinguishable_from,
                 "refined": {"effects": self.refined.effects, **rm(self.refined)},
                 "remaining_structure": self.remaining_structure, "structure": self.structure,
-                "steps": self.steps, "shape": self.shape, "evidence": self.evidence}
+                "steps": self.steps, "shape": self.shape, "evidence": self.evidence,
+                "drum": None if self.drum is None else self.drum.as_dict()}
 
     def to_json(self, path=None) -> str:
         text = json.dumps(to_jsonable(self.as_dict()), indent=2)
@@ -91,6 +94,8 @@ class Diagnosis:
         for c in self.candidates:
             lines.append(f"{c.effect:<28}{c.delta_bic:>9.1f}{c.fit.rmse_torque_Nm:>13.3g}{c.fit.rmse_temp_C:>11.3g}"
                          f"{_f(c.cv_score):>10}")
+        if self.drum is not None:
+            lines += ["", self.drum.report()]
         lines.append("")
         lines.append(self.refined.report())
         return "\n".join(lines)
@@ -105,6 +110,12 @@ class Diagnosis:
     def report(self, path) -> None:
         from rollaway.identify.report import diagnosis_report
         diagnosis_report(self, path)
+
+    def save_model(self, path, data_path=None):
+        """Write the calibrated model (the user's drum + the verdict's effects, covariance with the
+        doubt of every fixed brake parameter, the identifiability record) as a model file."""
+        from rollaway.identify.export import save_fit
+        return save_fit(self.refined, path, data_path or self.data.source, "diagnose")
 
 
 def _f(x):
@@ -134,11 +145,13 @@ def _noise_words(name: str, n: Noise, unit: str, option: str) -> str:
 # -- the decision ---------------------------------------------------------------------------
 @single_blas_thread
 def diagnose(data: Measurements, params=None, effects=None, *, noise_torque_Nm: float | None = None,
-             noise_temp_C: float | None = None, max_effects: int = MAX_EFFECTS) -> Diagnosis:
-    """Select effects from *effects* (default: the catalogue plus registered plugins) for *data*.
+             noise_temp_C: float | None = None, max_effects: int = MAX_EFFECTS, free=None, fix=()) -> Diagnosis:
+    """Calibrate the user's drum, then select effects from *effects* (default: the catalogue plus
+    registered plugins) for what it leaves unexplained.
 
     *noise_torque_Nm*, *noise_temp_C*: the instrument's noise figures (σ), used instead of the
-    estimate from the data.
+    estimate from the data.  *free*, *fix*: brake parameters to free or hold instead of the
+    automatic choice (:func:`rollaway.identify.drum.calibrate_drum`).
     """
     names = list(available_effects()) if effects is None else [get_effect(e).name for e in effects]
     data = data.subset(np.ones(len(data), bool))          # a copy that carries the noise model
@@ -147,20 +160,27 @@ def diagnose(data: Measurements, params=None, effects=None, *, noise_torque_Nm: 
     data.torque_sigma_Nm = np.maximum(nq.at(data.torque_Nm), 1e-9)
     data.temp_sigma_C = np.maximum(nt.at(data.drum_temp_C), 1e-9)
     paper = evaluate(data, (), params)
-    base = calibrate(data, (), params, start=first.values)
+    drum = calibrate_drum(data, params, free=free, fix=fix, start=first.values)
+    params = drum.plan                                     # every later fit frees what the data identify
+    base = drum.fit
     base_struct = structure(base, nq, nt)
     ev = [f"Noise: {_noise_words('torque', nq, 'N·m', '--noise-torque-Nm')}; "
           f"{_noise_words('drum temperature', nt, '°C', '--noise-temp-C')}.",
           f"Each test's start temperature T_0 is fitted with the rest (t = 0 readings are measurements, "
           f"not exact values).",
           f"Paper defaults: torque RMSE {paper.rmse_torque_Nm:.3g} N·m, temperature RMSE {paper.rmse_temp_C:.3g} °C. "
-          f"Calibrated baseline (μ_d = {base.values['mu_drum']:.4g}, h = {base.values['heat_transfer_W_m2K']:.4g} "
-          f"W/(m² K)): {base.rmse_torque_Nm:.3g} N·m and {base.rmse_temp_C:.3g} °C; "
+          f"Calibrated drum ({', '.join(f'{n} = {base.values[n]:.4g}' for n in drum.free) or 'nothing freed'}): "
+          f"{base.rmse_torque_Nm:.3g} N·m and {base.rmse_temp_C:.3g} °C; "
           + _describe_residual(base, "torque") + "; " + _describe_residual(base, "temperature") + "."]
     current, chosen, steps, fits = base, [], [], []
     first_cands, base_cv, indist, struct = [], None, [], base_struct
     for step in range(1, max_effects + 1):
-        cands, strong, passing, cur_cv = forward_step(data, params, names, current, chosen, step)
+        per_test_ok = per_test_signature(current, nq)
+        cands, strong, passing, cur_cv = forward_step(data, params, names, current, chosen, step, per_test_ok)
+        if not per_test_ok and any(has_per_test(n) for n in names if n not in chosen):
+            ev.append(f"Step {step}: per-test effects ({', '.join(n for n in names if has_per_test(n))}) not "
+                      f"tried: the torque residual is not a constant offset within each test (its test means "
+                      f"{'do not differ' if not _test_offsets(current, nq) else 'differ, but structure remains within the tests'}).")
         if step == 1:
             first_cands, base_cv = cands, cur_cv
         if not passing:
@@ -243,8 +263,12 @@ def diagnose(data: Measurements, params=None, effects=None, *, noise_torque_Nm: 
                       f"the shape shown (write it as a plugin)."
                       + (f"  {', '.join(dropped)} only absorbed part of this form mismatch and is not kept."
                          if dropped else ""))
+    refined = recheck(drum, data, refined, [e["effect"] for e in selected]) if selected else refined
+    drum.update(refined)
+    refined.covariance = predictive_covariance(refined, drum.fixed_priors())
+    refined.fit_info["calibration"] = drum.record()
     return Diagnosis(data, paper, base, nq, nt, first_cands, verdict, indist if verdict != "none" else [], refined,
-                     remaining, struct, base_cv, ev, selected, steps, shape)
+                     remaining, struct, base_cv, ev, selected, steps, shape, drum)
 
 
 def _partial(data, params, base: FitResult, refined: FitResult, chosen: list[str], nq: Noise, nt: Noise):
@@ -270,6 +294,11 @@ def _partial(data, params, base: FitResult, refined: FitResult, chosen: list[str
         if not s["structured"]:
             return name, float(share), shape_curves(eff, refined, fit, flex), s
     return None
+
+
+def _test_offsets(fit: FitResult, nq: Noise) -> bool:
+    from rollaway.identify.residuals import STRUCTURE_P
+    return structure(fit, nq, nq)["torque"]["test_offsets"]["p"] < STRUCTURE_P
 
 
 def _no_candidate_words(cands, strong, cur_cv) -> str:

@@ -38,6 +38,7 @@ def calibrated_model(fit, data_path: str | Path | None = None, command: str = "f
     from rollaway.model_file import provenance_for
 
     model = fit.model.drum_model(fit.values, covariance=fit_covariance(fit))
+    model.calibration = dict(fit.fit_info.get("calibration", {}))
     if data_path is not None:
         model.provenance = provenance_for(data_path, rows=len(fit.data), tests=fit.data.n_tests, command=command,
                                           rmse={"rmse_torque_Nm": fit.rmse_torque_Nm, "rmse_temp_C": fit.rmse_temp_C})

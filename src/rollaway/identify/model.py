@@ -1,7 +1,8 @@
 """The extended bench model: the paper's baseline plus effect hooks, over all samples at once.
 
-Free baseline parameters are ``mu_drum`` (μ_d) and ``heat_transfer_W_m2K`` (h); effect
-parameters are named ``"<effect>.<parameter>"``.  Per-test quantities are separate additions:
+Free brake parameters are a subset of :data:`rollaway.drum_parameters.BASELINE_FREE` (μ_d, the
+eq. (24) slope and offset, the arm ratio l_fr/l_f, h, the ambient), chosen by a
+:class:`DrumPlan` (default: μ_d and h); effect parameters are named ``"<effect>.<parameter>"``.  Per-test quantities are separate additions:
 ``"initial_temp_C"`` (each test's start temperature T_0, a nuisance parameter) and effect
 parameters declared ``per_test``; in a values dict they hold one value per test (an array in
 the order of ``data.tests``).  Without ``"initial_temp_C"`` the t = 0 readings are used.
@@ -21,12 +22,27 @@ import numpy as np
 
 from rollaway.effects import Effect, ModelState
 from rollaway.identify.measurements import Measurements
-from rollaway.model import BASELINE_BOUNDS, BASELINE_FREE, BASELINE_UNITS, DrumModel  # noqa: F401
+from rollaway.drum_parameters import BASELINE_FREE, LEGACY_FREE, apply, values_of
+from rollaway.model import CHAIN_OVERRIDES, DrumModel
 from rollaway.parameters import BrakeParameters
 from rollaway.physics import cooling
 
 INITIAL_TEMP = "initial_temp_C"          # per-test nuisance: each test's T_0 [°C]
 INITIAL_TEMP_BOUNDS = (-60.0, 1000.0)
+
+
+@dataclass(frozen=True)
+class DrumPlan:
+    """A parameter set and which of its brake parameters a calibration frees (the rest stay at their values)."""
+
+    params: BrakeParameters
+    free: tuple[str, ...] = LEGACY_FREE
+
+    def __post_init__(self):
+        bad = [n for n in self.free if n not in BASELINE_FREE]
+        if bad:
+            raise ValueError(f"unknown brake parameter {bad[0]!r}; calibratable: {', '.join(BASELINE_FREE)}")
+        object.__setattr__(self, "free", tuple(n for n in BASELINE_FREE if n in self.free))
 
 
 @dataclass
@@ -40,16 +56,19 @@ class Prediction:
 class BenchModel:
     """Baseline + a list of effects; :meth:`predict` evaluates it on measurements."""
 
-    def __init__(self, params: BrakeParameters | str | None = None, effects=()):
+    def __init__(self, params: BrakeParameters | DrumPlan | str | None = None, effects=()):
+        self.free: tuple[str, ...] = LEGACY_FREE
+        if isinstance(params, DrumPlan):
+            self.free, params = params.free, params.params
         self.drum = params if isinstance(params, DrumModel) else DrumModel(params, effects)
         self.params = self.drum.params
         self.effects: list[Effect] = list(self.drum.effects)
 
     # -- parameters ------------------------------------------------------------------
     def parameter_names(self) -> list[str]:
-        """Global parameters (one value for all tests)."""
-        return list(BASELINE_FREE) + [f"{e.name}.{p.name}" for e in self.effects for p in e.parameters
-                                      if not p.per_test]
+        """Global parameters (one value for all tests): the freed brake parameters, then the effects'."""
+        return list(self.free) + [f"{e.name}.{p.name}" for e in self.effects for p in e.parameters
+                                  if not p.per_test]
 
     def per_test_parameters(self) -> list[str]:
         """Parameters with one value per test: T_0 first, then per-test effect parameters."""
@@ -63,7 +82,7 @@ class BenchModel:
         return v
 
     def neutral_values(self) -> dict[str, float]:
-        v = {"mu_drum": self.params.mu_drum, "heat_transfer_W_m2K": self.params.heat_transfer_W_m2K}
+        v = values_of(self.params)
         for e in self.effects:
             v.update({f"{e.name}.{k}": x for k, x in e.neutral_values().items()})
         return v
@@ -80,12 +99,16 @@ class BenchModel:
 
     def temperature_parameters(self) -> list[str]:
         """Parameters of the drum-temperature channel (h and temperature-changing effects)."""
-        return ["heat_transfer_W_m2K"] + [f"{e.name}.{p.name}" for e in self.effects if e.touches_temperature()
-                                          for p in e.parameters if not p.per_test]
+        from rollaway.drum_parameters import FREE_PARAMETERS
+        return [n for n in self.free if FREE_PARAMETERS[n].channel == "temperature"] + [
+            f"{e.name}.{p.name}" for e in self.effects if e.touches_temperature() for p in e.parameters
+            if not p.per_test]
 
     def torque_parameters(self) -> list[str]:
-        return ["mu_drum"] + [f"{e.name}.{p.name}" for e in self.effects if not e.touches_temperature()
-                              for p in e.parameters if not p.per_test]
+        from rollaway.drum_parameters import FREE_PARAMETERS
+        return [n for n in self.free if FREE_PARAMETERS[n].channel == "torque"] + [
+            f"{e.name}.{p.name}" for e in self.effects if not e.touches_temperature() for p in e.parameters
+            if not p.per_test]
 
     # -- evaluation ------------------------------------------------------------------
     def _active(self, values: dict, data: Measurements | None = None) -> list[tuple[Effect, dict]]:
@@ -105,8 +128,8 @@ class BenchModel:
                                **self._inputs(data, values))
 
     def _effect_values(self, values: dict, data: Measurements) -> dict:
-        """Effect values for the chain: per-test ones expanded to every sample."""
-        out = {}
+        """Effect values for the chain (per-test ones expanded to every sample) and the brake overrides."""
+        out = {k: float(values[k]) for k in CHAIN_OVERRIDES if k in values and k in self.free}
         for e in self.effects:
             for p in e.parameters:
                 key = f"{e.name}.{p.name}"
@@ -115,7 +138,8 @@ class BenchModel:
         return out
 
     def _inputs(self, data: Measurements, values: dict) -> dict:
-        amb = self.params.ambient_temp_C if data.ambient_C is None else data.ambient_C
+        amb = float(values.get("ambient_temp_C", self.params.ambient_temp_C)) if data.ambient_C is None \
+            else data.ambient_C
         t0 = data.initial_temp_C if values.get(INITIAL_TEMP) is None else per_sample(values[INITIAL_TEMP], data)
         return dict(initial_temp_C=t0, ambient_C=amb, heat_transfer_W_m2K=float(values["heat_transfer_W_m2K"]),
                     test_index=data.test_index, test_ids=data.tests)
@@ -156,9 +180,8 @@ class BenchModel:
         values = {**self.neutral_values(), **(values or {})}
         effect_values = {f"{e.name}.{p.name}": float(values.get(f"{e.name}.{p.name}", p.neutral))
                          for e in self.effects for p in e.parameters if not p.per_test}
-        return DrumModel(self.params.replace(mu_drum=float(values["mu_drum"]),
-                                             heat_transfer_W_m2K=float(values["heat_transfer_W_m2K"])),
-                         self.effects, effect_values, **kw)
+        params = apply(self.params, {k: values[k] for k in BASELINE_FREE if k in values})
+        return DrumModel(params.replace(), self.effects, effect_values, **kw)
 
 
 def per_sample(value, data: Measurements) -> np.ndarray | float:

@@ -40,14 +40,47 @@ class Candidate:
 
 
 # -- structure ------------------------------------------------------------------------------
+CLEARLY_ABOVE_NOISE = 1.5    # a residual variance this many times the noise's is structure, whatever the p-values
+
+
 def structure(fit: FitResult, nq: Noise, nt: Noise) -> dict:
+    """Structure tests of both channels' residuals; ``structured`` also when a channel's residual
+    variance is clearly above the noise estimate (ratio ≥ :data:`CLEARLY_ABOVE_NOISE`)."""
     rt, rq = fit.residuals()
     kq = fit.effective_parameters.get("torque", len(fit.model.torque_parameters()))
     kt = fit.effective_parameters.get("temperature", len(fit.model.temperature_parameters()))
     out = {"torque": structure_tests(fit.data, rq, nq, kq, sigma=fit.data.torque_sigma_Nm),
            "temperature": structure_tests(fit.data, rt, nt, kt, sigma=fit.data.temp_sigma_C)}
+    for ch in ("torque", "temperature"):
+        if out[ch]["excess_variance"]["ratio"] >= CLEARLY_ABOVE_NOISE:
+            out[ch]["structured"] = True
+            out[ch]["clearly_above_noise"] = True
     out["structured"] = out["torque"]["structured"] or out["temperature"]["structured"]
     return out
+
+
+def per_test_signature(fit: FitResult, nq: Noise) -> bool:
+    """True when the torque residual is per-test offsets and nothing else: its test means differ
+    (ANOVA p < STRUCTURE_P) and, with each test's mean removed, no structure is left.  Only then may a
+    per-test (nuisance) effect stand in the model: otherwise its per-test values would absorb physics."""
+    from rollaway.identify.residuals import STRUCTURE_P
+    _, rq = fit.residuals()
+    d = fit.data
+    sig = np.broadcast_to(np.asarray(d.torque_sigma_Nm if d.torque_sigma_Nm is not None else nq.sigma, float),
+                          (len(d),))
+    kq = fit.effective_parameters.get("torque", len(fit.model.torque_parameters()))
+    full = structure_tests(d, rq, nq, kq, sigma=sig)
+    if full["test_offsets"]["p"] >= STRUCTURE_P:
+        return False
+    w = 1.0 / sig ** 2
+    mean = np.bincount(d.test_index, w * rq, d.n_tests) / np.maximum(np.bincount(d.test_index, w, d.n_tests), 1e-300)
+    inner = structure_tests(d, rq - mean[d.test_index], nq, kq + d.n_tests, sigma=sig)
+    return not any(inner[t]["p"] < STRUCTURE_P for t in ("autocorrelation", "time_profile"))
+
+
+def has_per_test(effect_name: str) -> bool:
+    from rollaway.effects import get_effect
+    return any(p.per_test for p in get_effect(effect_name).parameters)
 
 
 def weighted_chi2(fit: FitResult) -> float:
@@ -70,9 +103,40 @@ def _restrict(values: dict, families: list[str], keep: np.ndarray) -> dict:
 
 
 def cv_score(data: Measurements, effects, params, start: FitResult) -> np.ndarray:
-    """K-fold by test: per held-out test, Σ (residual/σ)² of both channels under a model calibrated
-    on the other folds (warm-started at *start*); only the held-out test's own T_0 and per-test
-    values are fitted to it."""
+    """Leave-one-test-out prediction error (K folds by test beyond :data:`LOO_TESTS` tests): per
+    held-out test, Σ (residual/σ)² of both channels under the model calibrated on the other tests,
+    only the held-out test's own T_0 and per-test values fitted to it.
+
+    Linearised at the full fit (*start*, which must carry its Jacobian): with J the projected
+    Jacobian and r the standardised residual, leaving out the rows g moves the globals by
+    (JᵀJ − J_gᵀJ_g)⁻¹·J_gᵀ·r_g, so the held-out residual is r_g + J_g·(JᵀJ − J_gᵀJ_g)⁻¹·J_gᵀ·r_g
+    (the exact result for a model linear in its parameters; Woodbury, so no refit and no n×n
+    matrix).  Falls back to refitting each fold when the fit has no Jacobian."""
+    if start.jacobian is None or not start.names:
+        return _cv_refit(data, effects, params, start)
+    d = start.data
+    pred = start.prediction
+    r = np.concatenate([(pred.drum_temp_C - d.drum_temp_C) / d.temp_sigma_C,
+                        (pred.torque_Nm - d.torque_Nm) / d.torque_sigma_Nm])
+    j = np.where(np.isfinite(start.jacobian), start.jacobian, 0.0)
+    colscale = np.sqrt(np.maximum((j * j).sum(axis=0), 1e-300))
+    j = j / colscale
+    rows_test = np.concatenate([d.test_index, d.test_index])
+    a = j.T @ j
+    scores = np.zeros(d.n_tests)
+    for held in folds(d.n_tests):
+        g = np.isin(rows_test, held)
+        jg, rg = j[g], r[g]
+        m = a - jg.T @ jg
+        m += 1e-10 * np.trace(m) / max(len(m), 1) * np.eye(len(m))
+        loo = rg + jg @ np.linalg.lstsq(m, jg.T @ rg, rcond=1e-12)[0]
+        scores[np.asarray(held)] = np.bincount(rows_test[g], loo * loo, d.n_tests)[np.asarray(held)] \
+            if len(held) else 0.0
+    return scores
+
+
+def _cv_refit(data: Measurements, effects, params, start: FitResult) -> np.ndarray:
+    """K-fold by test with a refit per fold (warm-started at *start*)."""
     scores = np.zeros(data.n_tests)
     fams = start.model.per_test_parameters()
     glob = start.model.parameter_names()
@@ -92,17 +156,35 @@ def cv_score(data: Measurements, effects, params, start: FitResult) -> np.ndarra
 
 
 # -- the steps ---------------------------------------------------------------------------
-def forward_step(data, params, names, current: FitResult, chosen: list[str], step: int):
-    """Fit every remaining candidate on top of *current*; cross-validate the strong ones."""
+def forward_step(data, params, names, current: FitResult, chosen: list[str], step: int,
+                 per_test_ok: bool = True, screen: bool = False):
+    """Fit every remaining candidate on top of *current*; cross-validate the strong ones.  Effects
+    with per-test parameters are tried only when *per_test_ok* (:func:`per_test_signature`).
+    *screen*: fit the candidates with the brake parameters held, then refit the best few jointly
+    (faster, but an effect the calibrated drum has partly absorbed can be missed)."""
     start = {k: v for k, v in current.values.items()}
     cands = []
+    held, n_held = _held_plan(params, current) if screen else (params, 0)
     for name in names:
-        if name in chosen:
+        if name in chosen or (not per_test_ok and has_per_test(name)):
             continue
-        fit = calibrate(data, chosen + [name], params, start=start)
-        cands.append(Candidate(name, fit, fit.bic - current.bic, fit.aic - current.aic, step=step))
+        if has_per_test(name) and held is params:      # per-test fits are the costly ones: screen them
+            h, k = _held_plan(params, current)
+            fit = calibrate(data, chosen + [name], h, start=start)
+            fit = calibrate(data, chosen + [name], params, start=fit.values, statistics=True)
+        else:
+            h, k = held, n_held
+            fit = calibrate(data, chosen + [name], held, start=start)     # screening: brake parameters held
+        cands.append(Candidate(name, fit, fit.bic + k * np.log(2 * len(data)) * (h is not params) - current.bic,
+                               fit.aic + 2 * k * (h is not params) - current.aic, step=step))
     cands.sort(key=lambda c: c.delta_bic)
-    strong = [c for c in cands if c.delta_bic < BIC_THRESHOLD][:CV_TOP]
+    for c in cands[:CV_TOP]:                           # the best few refitted with the brake parameters free
+        if c.delta_bic < BIC_THRESHOLD or held is params:
+            c.fit = calibrate(data, chosen + [c.effect], params, start=c.fit.values)
+            c.delta_bic, c.delta_aic = c.fit.bic - current.bic, c.fit.aic - current.aic
+    cands.sort(key=lambda c: c.delta_bic)
+    strong = [c for c in cands if c.delta_bic < BIC_THRESHOLD and c.fit.jacobian is not None
+              or c.delta_bic < BIC_THRESHOLD and held is params][:CV_TOP]
     cur_cv = None
     if strong:
         cur_scores = cv_score(data, chosen, params, current)
@@ -113,6 +195,16 @@ def forward_step(data, params, names, current: FitResult, chosen: list[str], ste
             c.cv_better_tests = int((s < cur_scores).sum())
     passing = [c for c in strong if c.cv_score is not None and c.cv_score < cur_cv]
     return cands, strong, passing, cur_cv
+
+
+def _held_plan(params, current: FitResult):
+    """The plan of *current* with its brake parameters held at their fitted values (for screening)."""
+    from rollaway.drum_parameters import apply
+    from rollaway.identify.model import DrumPlan
+    free = current.model.free
+    if not isinstance(params, DrumPlan) or not free:
+        return params, 0
+    return DrumPlan(apply(params.params, {n: current.values[n] for n in free}), ()), len(free)
 
 
 def exchange(data, params, names, chosen, current, struct, nq, nt, rounds: int = 2):

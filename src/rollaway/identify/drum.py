@@ -1,0 +1,291 @@
+"""The user's drum: which brake parameters the bench data identify, calibrated before any effect is sought.
+
+A bench rig tests *its* drum, not the paper's.  :func:`calibrate_drum` frees one name per
+identifiable product of the chain (:mod:`rollaway.drum_parameters`: μ_d for the torque scale,
+the eq. (24) slope and offset, the arm ratio l_fr/l_f, h, the ambient when not logged) and
+decides which of them these data determine:
+
+1. *not tested*: the test design cannot show it (one direction → the arm ratio, which only
+   shows in the downhill/uphill ratio; a logged ambient is read, not fitted);
+2. the rest are fitted jointly (each test's T_0 profiled out); the Jacobian, with each column
+   in units of the parameter's assumed spread (``prior_sd``) and each channel's rows scaled by
+   its residual variance factor, is decomposed into singular values.  While the smallest is
+   below :data:`MIN_SINGULAR_VALUE` (the data pin that combination down less than a third of
+   the assumed spread), the parameter that loads most on it (ties broken by
+   :data:`FIX_FIRST`) is fixed at its assumed value and reported as *confounded with* the
+   others that load on the same direction; then the fit is repeated.
+
+``free=`` and ``fix=`` override the choice.  Fixed and untested parameters keep their doubt:
+:func:`predictive_covariance` adds their assumed spread as a Gaussian prior to the fit's
+information, so a draw for an untested direction varies the arm ratio while the tested
+direction's torque stays where the data put it.
+"""
+from __future__ import annotations
+
+from dataclasses import dataclass, field
+
+import numpy as np
+
+from rollaway.drum_parameters import BASELINE_FREE, FREE_PARAMETERS, apply, value_of
+from rollaway.errors import UserError, suggest
+from rollaway.identify.calibrate import FitResult, calibrate, jacobian_at
+from rollaway.identify.measurements import Measurements
+from rollaway.identify.model import DrumPlan
+from rollaway.model import Covariance
+from rollaway.parameters import BrakeParameters, load_parameters
+
+MIN_SINGULAR_VALUE = 3.0       # data must determine a direction to ≤ 1/3 of the assumed spread [assumed]
+CONFOUND_LOADING = 0.3         # |loading| on the weak direction that counts as "confounded with"
+FIX_FIRST = ("ambient_temp_C", "shoe_arm_ratio", "u6_offset_m", "u6_slope_m_per_N", "heat_transfer_W_m2K",
+             "mu_drum")        # among near-equal loadings, fix the earlier one (keep the torque scale longest)
+
+
+@dataclass
+class ParameterStatus:
+    """One brake parameter of the identifiability report."""
+
+    name: str
+    status: str                      # "fitted", "fixed", "not tested", "logged", "fixed by you"
+    value: float
+    assumed_value: float
+    unit: str
+    stderr: float | None = None
+    ci95: tuple[float, float] | None = None
+    prior_sd: float | None = None    # the doubt kept for bands when not fitted [assumed]
+    confounded_with: list[str] = field(default_factory=list)
+    reason: str = ""
+
+    def as_dict(self) -> dict:
+        return {"status": self.status, "value": self.value, "assumed_value": self.assumed_value, "unit": self.unit,
+                "stderr": self.stderr, "ci95": None if self.ci95 is None else list(self.ci95),
+                "prior_sd": self.prior_sd, "confounded_with": self.confounded_with, "reason": self.reason,
+                "stands_for": FREE_PARAMETERS[self.name].stands_for}
+
+    def line(self) -> str:
+        p = FREE_PARAMETERS[self.name]
+        if self.status == "fitted":
+            ci = f" [{self.ci95[0]:.4g}, {self.ci95[1]:.4g}]" if self.ci95 else ""
+            head = f"fitted        {self.value:.5g} ± {self.stderr:.2g}{ci} {p.unit}"
+            tail = f"  (assumed {self.assumed_value:.4g}; stands for the {p.stands_for})"
+        else:
+            head = f"{self.status:<13} {self.value:.5g} {p.unit}"
+            tail = f"  — {self.reason}" + (f" (kept as ±{self.prior_sd:.2g} {p.unit} in the bands [assumed])"
+                                            if self.prior_sd else "")
+        return f"  {self.name:<21} {head}{tail}"
+
+
+@dataclass
+class DrumCalibration:
+    """What the bench data say about the user's drum: the plan for every later fit, the fit, the report."""
+
+    params: BrakeParameters          # the set the data were fitted against (logged ambient written in)
+    entries: dict[str, ParameterStatus]
+    fit: FitResult
+    singular_values: list[float]
+    selection: str                   # how the free set was chosen
+
+    @property
+    def free(self) -> tuple[str, ...]:
+        return tuple(n for n, e in self.entries.items() if e.status == "fitted")
+
+    @property
+    def plan(self) -> DrumPlan:
+        return DrumPlan(self.params, self.free)
+
+    def fixed_priors(self) -> dict[str, float]:
+        """Assumed spreads of the brake parameters left at their assumed values (for the bands)."""
+        return {n: e.prior_sd for n, e in self.entries.items() if e.prior_sd and e.status != "fitted"}
+
+    def update(self, fit: FitResult) -> None:
+        """Refresh the fitted entries from a later fit of the same plan (e.g. with effects)."""
+        for n, e in self.entries.items():
+            if n in fit.estimates:
+                est = fit.estimates[n]
+                e.value, e.stderr, e.ci95 = est.value, est.stderr, tuple(est.ci95)
+        self.fit = fit
+
+    def as_dict(self) -> dict:
+        return {"selection": self.selection, "singular_values": self.singular_values,
+                "parameters": {n: e.as_dict() for n, e in self.entries.items()}}
+
+    def report(self) -> str:
+        lines = [f"Your drum ({self.selection}):"]
+        lines += [e.line() for e in self.entries.values()]
+        return "\n".join(lines)
+
+    def record(self) -> dict:
+        """The model file's ``[calibration]`` table: one short text per brake parameter."""
+        out = {}
+        for n, e in self.entries.items():
+            if e.status == "fitted":
+                out[n] = f"fitted: {e.value:.6g} ± {e.stderr:.3g} {e.unit}".rstrip()
+            else:
+                out[n] = f"{e.status}: {e.value:.6g} {e.unit} — {e.reason}".rstrip()
+        return out
+
+
+def _check_names(names, flag: str) -> list[str]:
+    out = []
+    for n in names or ():
+        if n not in FREE_PARAMETERS:
+            raise UserError(f"{flag} {n}: not a brake parameter a calibration can free{suggest(n, BASELINE_FREE)}; "
+                            f"choose from {', '.join(BASELINE_FREE)}")
+        out.append(n)
+    return out
+
+
+def calibrate_drum(data: Measurements, params=None, *, free=None, fix=(), start: dict | None = None,
+                   min_singular_value: float = MIN_SINGULAR_VALUE) -> DrumCalibration:
+    """Calibrate the brake parameters these data identify (module docstring); *free*/*fix* override."""
+    free, fix = _check_names(free, "--free"), _check_names(fix, "--fix")
+    both = sorted(set(free) & set(fix))
+    if both:
+        raise UserError(f"--free {both[0]} and --fix {both[0]} contradict each other; give it once")
+    p = params if isinstance(params, BrakeParameters) else load_parameters(params)
+    logged = data.ambient_C is not None
+    if logged:
+        p = p.replace(ambient_temp_C=float(np.mean(data.ambient_C)))
+    assumed = {n: value_of(p, n) for n in BASELINE_FREE}
+    entries: dict[str, ParameterStatus] = {}
+
+    def fixed(name, status, reason, confounded=(), prior=True):
+        spec = FREE_PARAMETERS[name]
+        entries[name] = ParameterStatus(name, status, assumed[name], assumed[name], spec.unit,
+                                        prior_sd=spec.spread(assumed[name]) if prior else None,
+                                        confounded_with=list(confounded), reason=reason)
+
+    directions = np.unique(data.sign)
+    candidates = []
+    for n in BASELINE_FREE:
+        if n in fix:
+            fixed(n, "fixed by you", "held at its value by --fix")
+        elif n == "ambient_temp_C" and logged:
+            fixed(n, "logged", "read from the bench's ambient column (its mean is the model's ambient)", prior=False)
+        elif free:
+            if n in free:
+                candidates.append(n)
+            else:
+                fixed(n, "fixed by you", "not in --free")
+        elif n == "shoe_arm_ratio" and directions.size < 2:
+            side = "downhill" if directions[0] > 0 else "uphill"
+            fixed(n, "not tested", f"only {side} tests: the arm ratio shows only in the downhill/uphill torque ratio")
+        else:
+            candidates.append(n)
+    selection = ("chosen by you (--free)" if free else
+                 f"free parameters chosen by singular values ≥ {min_singular_value:g} of the Jacobian in units of "
+                 f"each parameter's assumed spread")
+    vals = dict(start or {})
+    sv: list[float] = []
+    while True:
+        fit = calibrate(data, (), DrumPlan(p, tuple(candidates)), start=vals or None)
+        vals = {k: v for k, v in fit.values.items()}
+        if free or not candidates or fit.jacobian is None:
+            break
+        sv, drop, confounded = _weakest(fit, candidates)
+        if drop is None or sv[-1] >= min_singular_value:
+            break
+        others = f", confounded with {', '.join(confounded)}" if confounded else ""
+        fixed(drop, "fixed", f"not identifiable from these data (singular value {sv[-1]:.2g} < "
+                             f"{min_singular_value:g}){others}", confounded)
+        candidates.remove(drop)
+        vals.pop(drop, None)
+    for n in candidates:
+        est = fit.estimates[n]
+        entries[n] = ParameterStatus(n, "fitted", est.value, assumed[n], est.unit, est.stderr, tuple(est.ci95))
+    ordered = {n: entries[n] for n in BASELINE_FREE}
+    return DrumCalibration(p, ordered, fit, [float(x) for x in sv], selection)
+
+
+def recheck(drum: DrumCalibration, data: Measurements, fit: FitResult, effects: list) -> FitResult:
+    """Re-test the brake parameters' identifiability inside the final model (with its *effects*): an
+    effect can take over what a brake parameter did (per-test offsets absorb the eq. (24) law, for
+    one).  Parameters that lost their information are fixed at their assumed values (their doubt kept
+    for the bands) and the model refitted; returns the (possibly refitted) fit."""
+    if drum.selection.startswith("chosen by you") or not effects or fit.jacobian is None:
+        return fit
+    free = [n for n in drum.free if n in fit.names]
+    while free:
+        sv, drop, confounded = _weakest(fit, free)
+        if drop is None or sv[-1] >= MIN_SINGULAR_VALUE:
+            break
+        with_effects = [c for c in confounded if "." in c] or effects
+        e = drum.entries[drop]
+        e.status, e.value, e.stderr, e.ci95 = "fixed", e.assumed_value, None, None
+        e.prior_sd = FREE_PARAMETERS[drop].spread(e.assumed_value)
+        e.confounded_with = confounded
+        e.reason = (f"not identifiable once {', '.join(sorted({c.split('.')[0] for c in with_effects}))} is in the "
+                    f"model (singular value {sv[-1]:.2g} < {MIN_SINGULAR_VALUE:g})"
+                    + (f", confounded with {', '.join(confounded)}" if confounded else ""))
+        free.remove(drop)
+        vals = {k: v for k, v in fit.values.items() if k != drop}
+        fit = calibrate(data, effects, drum.plan, start=vals)
+    return fit
+
+
+def _scaled_jacobian(fit: FitResult, jac: np.ndarray, names: list[str]) -> np.ndarray:
+    """Jacobian with columns per assumed spread and each channel's rows per √(variance factor)."""
+    n = len(fit.data)
+    phi_t = max(fit.variance_factor.get("temperature", 1.0), 1e-300)
+    phi_q = max(fit.variance_factor.get("torque", 1.0), 1e-300)
+    rows = np.concatenate([np.full(n, phi_t ** -0.5), np.full(n, phi_q ** -0.5)])
+    spread = np.array([_spread(fit, m) for m in names])
+    return jac * rows[:, None] * spread[None, :]
+
+
+def _spread(fit: FitResult, name: str) -> float:
+    if name in FREE_PARAMETERS:
+        return FREE_PARAMETERS[name].spread(fit.values.get(name, value_of(fit.model.params, name)))
+    lo, hi = fit.model.bounds(name)
+    return 0.25 * (hi - lo)
+
+
+def _weakest(fit: FitResult, names: list[str]):
+    """Singular values (descending) of the brake parameters *names* (the fit's other parameters
+    profiled out) and the one to fix on the weakest direction, with what it is confounded with."""
+    others = [i for i, n in enumerate(fit.names) if n not in names]
+    cols = [fit.names.index(n) for n in names]
+    jall = _scaled_jacobian(fit, fit.jacobian, list(fit.names))
+    jall = np.where(np.isfinite(jall), jall, 0.0)
+    j = jall[:, cols]
+    if others:      # project out the effects' parameters: what the brake parameters alone still explain
+        q, _ = np.linalg.qr(jall[:, others])
+        j = j - q @ (q.T @ j)
+    _, s, vt = np.linalg.svd(j, full_matrices=False)
+    v = np.abs(vt[-1])
+    big = [names[i] for i in np.flatnonzero(v >= 0.7 * v.max())]
+    drop = min(big, key=FIX_FIRST.index)
+    confounded = [names[i] for i in np.flatnonzero(v >= CONFOUND_LOADING * v.max()) if names[i] != drop]
+    if others:      # the effect parameters that share the direction
+        a = jall[:, others]
+        w = np.linalg.lstsq(a, jall[:, cols] @ vt[-1], rcond=None)[0]
+        share = np.abs(w) / max(np.abs(w).max(), 1e-300)
+        confounded += [fit.names[others[i]] for i in np.flatnonzero(share >= 0.5)]
+    return list(s), drop, confounded
+
+
+def predictive_covariance(fit: FitResult, priors: dict[str, float]) -> Covariance | None:
+    """Covariance of the fit's parameters and of the brake parameters it held fixed (*priors*: their
+    assumed spreads), from the data's information plus a Gaussian prior on the fixed ones."""
+    names = list(fit.names) + [n for n in priors if n not in fit.names]
+    if not names:
+        return None
+    jac = jacobian_at(fit, names)
+    n = len(fit.data)
+    phi = np.concatenate([np.full(n, max(fit.variance_factor.get("temperature", 1.0), 1e-300)),
+                          np.full(n, max(fit.variance_factor.get("torque", 1.0), 1e-300))])
+    jw = jac / np.sqrt(phi)[:, None]
+    info = jw.T @ jw
+    prior = np.array([1.0 / priors[m] ** 2 if m in priors else 0.0 for m in names])
+    info = info + np.diag(prior)
+    scale = np.sqrt(np.maximum(np.diag(info), 1e-300))
+    cov = np.linalg.pinv(info / np.outer(scale, scale), rcond=1e-12) / np.outer(scale, scale)
+    cov = 0.5 * (cov + cov.T)
+    w, v = np.linalg.eigh(cov)
+    cov = (v * np.clip(w, 0.0, None)) @ v.T
+    keep = [i for i, m in enumerate(names) if np.isfinite(cov[i, i]) and cov[i, i] > 0]
+    if not keep:
+        return None
+    return Covariance(tuple(names[i] for i in keep), cov[np.ix_(keep, keep)])
+
+
+__all__ = ["DrumCalibration", "ParameterStatus", "calibrate_drum", "predictive_covariance", "MIN_SINGULAR_VALUE"]
