@@ -30,6 +30,7 @@ from rollaway.identify.measurements import Measurements
 from rollaway.identify.model import INITIAL_TEMP, BenchModel
 
 MAX_OUTER = 4
+MAX_ITERATIONS = 40          # Levenberg–Marquardt iterations per pass (a fit that needs more is degenerate)
 _single_thread = False
 
 
@@ -141,7 +142,7 @@ class Problem:
 
             if names:
                 res = optimize.least_squares(fun, z, method="lm", xtol=tol, ftol=tol, gtol=tol,
-                                             max_nfev=200 * (len(names) + 1))
+                                             max_nfev=MAX_ITERATIONS * (len(names) + 1))
                 z = res.x
                 vals.update(zip(names, to_x(z)))
             r_lin, step, _, _ = self.profile(vals)

@@ -297,6 +297,16 @@ def diagnosis_report(diag, path) -> None:
             "<h2>Evidence</h2>" + ul(getattr(diag, "evidence", [])))
     if design_tab:
         body += "<h2>Design case</h2>" + design_tab
+    drum = getattr(diag, "drum", None)
+    if drum is not None:
+        body += (f"<h2>Your drum: what these data identify</h2><p class='sub'>{esc(drum.selection)}; singular values "
+                 f"{', '.join(f'{x:.3g}' for x in drum.singular_values) or '–'}</p>"
+                 + table(["parameter", "status", "value", "± (1σ)", "95 % interval", "assumed value", "note"],
+                         [[n, e.status, e.value, e.stderr, "" if e.ci95 is None else f"{e.ci95[0]:.4g} – {e.ci95[1]:.4g}",
+                           e.assumed_value, e.reason or f"stands for the {e.as_dict()['stands_for']}"]
+                          for n, e in drum.entries.items()])
+                 + "<p class='note'>Fixed and untested parameters stay at their assumed values; their assumed spread "
+                   "(in brackets in the note) is carried into the uncertainty bands of the saved model.</p>")
     body += ("<h2>Candidates, best first</h2>"
              + table(["effect", "ΔBIC", "torque RMSE [N·m]", "temp. RMSE [°C]", "leave-one-test-out score [–]",
                       "held-out tests predicted better"], _candidate_rows(diag))
