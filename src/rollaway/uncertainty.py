@@ -14,7 +14,8 @@ from dataclasses import dataclass
 import numpy as np
 
 from rollaway.errors import UserError
-from rollaway.model import BASELINE_FREE, DrumModel
+from rollaway.drum_parameters import LEGACY_FREE
+from rollaway.model import DrumModel
 
 MAX_REJECTION_ROUNDS = 50
 PERCENTILES = (5.0, 50.0, 95.0)
@@ -96,7 +97,7 @@ def rollaway_risk(model: DrumModel, *, hand_force_N: float, grade_pct: float, di
     mu = vals.get("mu_drum", np.full(draws, model.params.mu_drum))
     fn = MarginFunction(model, np.full(draws, float(validate_hand_force(hand_force_N))), np.full(draws, float(sign)),
                         np.full(draws, t_req), mu, None, initial_temp_C, heat_transfer_W_m2K=vals.get(
-                            "heat_transfer_W_m2K"), values={k: v for k, v in vals.items() if k not in BASELINE_FREE})
+                            "heat_transfer_W_m2K"), values={k: v for k, v in vals.items() if k not in LEGACY_FREE})
     brake = least_margin(fn, duration_s)
     t_slip = np.full(draws, np.nan)
     slips = np.flatnonzero(brake < 1.0)          # only draws whose brake gives way have a slip time
