@@ -25,10 +25,12 @@ pass arrays of time, hand force, direction, μ_d, T_0 — or of effect values �
 from __future__ import annotations
 
 from dataclasses import dataclass, fields
+from pathlib import Path
 
 import numpy as np
 from numpy.typing import ArrayLike
 
+from rollaway.covariance import BASELINE_BOUNDS, BASELINE_FREE, BASELINE_UNITS, Covariance
 from rollaway.effects.base import Effect, ModelState
 from rollaway.effects.hooks import call_hook
 from rollaway.errors import UserError
@@ -36,11 +38,6 @@ from rollaway.parameters import BrakeParameters
 from rollaway.physics import cooling, drum
 
 _PARAMETER_NAMES = frozenset(f.name for f in fields(BrakeParameters)) | {"cooling_time_constant_s"}
-
-# Free baseline parameters of a calibration and their bounds (μ_d: eqs. 17b–21; h: eq. 10) [assumed ranges]
-BASELINE_FREE = ("mu_drum", "heat_transfer_W_m2K")
-BASELINE_BOUNDS = {"mu_drum": (0.02, 1.0), "heat_transfer_W_m2K": (1.0, 400.0)}
-BASELINE_UNITS = {"mu_drum": "–", "heat_transfer_W_m2K": "W/(m² K)"}
 
 
 @dataclass(frozen=True)
@@ -57,26 +54,6 @@ class BrakeSeries:
     def columns(self) -> dict[str, np.ndarray]:
         return {"time_s": self.time_s, "drum_temp_C": self.drum_temp_C,
                 "normal_force_N": self.normal_force_N, "torque_Nm": self.torque_Nm}
-
-
-@dataclass(frozen=True)
-class Covariance:
-    """Covariance of fitted parameters: names (``"mu_drum"``, ``"lining_creep.relaxed_fraction"``) and matrix."""
-
-    names: tuple[str, ...]
-    matrix: np.ndarray
-
-    def __post_init__(self):
-        m = np.asarray(self.matrix, float)
-        object.__setattr__(self, "matrix", m)
-        object.__setattr__(self, "names", tuple(self.names))
-        if m.shape != (len(self.names), len(self.names)):
-            raise UserError(f"covariance: matrix is {m.shape[0]}×{m.shape[1] if m.ndim > 1 else 1} but "
-                            f"{len(self.names)} names are given; give one row and column per name")
-
-    @property
-    def stderr(self) -> dict[str, float]:
-        return {n: float(np.sqrt(max(self.matrix[i, i], 0.0))) for i, n in enumerate(self.names)}
 
 
 def direction_to_sign(direction) -> np.ndarray:
@@ -99,9 +76,15 @@ class DrumModel:
                  base: str | None = None, effect_files: dict | None = None):
         from rollaway.effects import get_effect
 
-        if not isinstance(params, BrakeParameters):     # a set name, parameter file or model file: its set
-            from rollaway.model_file import load_model
-            params = load_model(params).params
+        if not isinstance(params, BrakeParameters):     # a set name, parameter file or model file
+            from rollaway.model_file import read_model
+            parts = read_model(params)
+            params, effects = parts["params"], (*parts["effects"], *effects)
+            values = {**parts["values"], **(values or {})}
+            covariance = parts["covariance"] if covariance is None else covariance
+            provenance = parts["provenance"] if provenance is None else provenance
+            name, base = name or parts["name"], base or parts["base"]
+            effect_files = {**parts["effect_files"], **(effect_files or {})}
         self.params = params
         self.effects: tuple[Effect, ...] = tuple(get_effect(e) for e in effects)
         names = [e.name for e in self.effects]
@@ -367,14 +350,17 @@ def _all_neutral(effect: Effect, v: dict) -> bool:
     return False
 
 
+def load_model(source: str | Path | None = None) -> DrumModel:
+    """A named set (``"paper"``), a parameter file or a model file as a :class:`DrumModel` (= ``DrumModel(source)``)."""
+    return DrumModel(source)
+
+
 def as_model(model_or_params) -> DrumModel:
     """A :class:`DrumModel` from a model, a parameter set, a set name or a file (None: the paper set)."""
     if isinstance(model_or_params, DrumModel):
         return model_or_params
-    if isinstance(model_or_params, BrakeParameters):
-        return DrumModel(model_or_params)
-    from rollaway.model_file import load_model
-    return load_model(model_or_params)
+    return DrumModel(model_or_params)
 
 
-__all__ = ["BrakeSeries", "Covariance", "DrumModel", "as_model", "direction_to_sign"]
+__all__ = ["BASELINE_BOUNDS", "BASELINE_FREE", "BASELINE_UNITS", "BrakeSeries", "Covariance", "DrumModel",
+           "as_model", "direction_to_sign", "load_model"]

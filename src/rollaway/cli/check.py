@@ -11,7 +11,7 @@ from rollaway.cli import options as opt
 from rollaway.cli.output import FORMATS, write_table
 from rollaway.errors import UserError, check_choice
 from rollaway.hold import analytic_verdict
-from rollaway.model_file import load_model
+from rollaway.model import load_model
 from rollaway.regulations import PRESETS, get_preset
 
 DEFAULT_PRESETS = ("fmvss135", "unr13h")

@@ -77,7 +77,7 @@ def sweep(
     expect_sweep(spec_path)
     spec = load_sweep(spec_path)
     if params is not None:
-        from rollaway.model_file import load_model
+        from rollaway.model import load_model
         spec = spec.with_model(load_model(params))
     if uncertainty is not None and spec.base.model.covariance is None:
         raise UserError("--uncertainty needs a model file with a [covariance] table; give --params FILE.toml "
