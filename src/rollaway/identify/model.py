@@ -41,6 +41,8 @@ class BenchModel:
     """Baseline + a list of effects; :meth:`predict` evaluates it on measurements."""
 
     def __init__(self, params: BrakeParameters | str | None = None, effects=()):
+        if not isinstance(params, (DrumModel, BrakeParameters)):   # a set name or file: its parameter set only,
+            params = DrumModel(params).params                        # the effects fitted are the ones given
         self.drum = params if isinstance(params, DrumModel) else DrumModel(params, effects)
         self.params = self.drum.params
         self.effects: list[Effect] = list(self.drum.effects)
