@@ -1,4 +1,4 @@
-"""``rollaway diagnose``: which physical effect is the paper's model missing?"""
+"""``rollaway diagnose``: which physical effect is the paper's model missing? (:func:`rollaway.diagnose`)"""
 from __future__ import annotations
 
 from typing import List, Optional
@@ -27,19 +27,17 @@ def diagnose(
 ) -> None:
     """Calibrate μ_d, h and each test's T_0, select catalogue effects forward (BIC and K-fold
     cross-validation by test), and say which effects are missing (or 'none') with the evidence."""
-    from rollaway.identify.diagnose import diagnose as run
+    from rollaway.api import diagnose as run
 
     from rollaway.cli.output import REPORT_FORMATS
     from rollaway.errors import check_choice
     check_choice(fmt, REPORT_FORMATS, "--format")
     prepare_outputs(report=report, json_out=json_out, save_model=save_model)
     load_plugins(effect_file)
-    diag = run(load_data(data), params, noise_torque_Nm=noise_torque_Nm or None, noise_temp_C=noise_temp_C or None)
+    diag = run(load_data(data), params=params, noise_torque_Nm=noise_torque_Nm or None, noise_temp_C=noise_temp_C or None)
     write_outputs(diag, report=report, json_out=json_out, fmt=fmt)
     if save_model:
-        from rollaway.identify.export import save_fit
-        typer.echo(f"model: {save_fit(diag.refined, save_model, data, 'diagnose')} (paper chain + the verdict's "
-                   f"effects; use it with --params)")
+        typer.echo(f"model: {diag.save_model(save_model)} (paper chain + the verdict's effects; use it with --params)")
 
 
 def register(app: typer.Typer) -> None:

@@ -6,7 +6,7 @@ over [0, duration_s]: least brake margin, slip time, tyre margin, least hand for
 """
 from __future__ import annotations
 
-from dataclasses import dataclass
+from dataclasses import dataclass, field
 
 import numpy as np
 
@@ -18,7 +18,28 @@ OUTCOMES = ("held", "brake_slip", "tyre_skid", "self_locking")
 
 @dataclass(frozen=True)
 class HoldVerdict:
-    """Outcome of the analytic check for one case."""
+    """Outcome of the analytic check of one parked case over [0, duration_s].
+
+    Attributes
+    ----------
+    brake_margin_min : float
+        Least brake hold margin ``2·T_gen/T_req`` over the duration [–]; ≥ 1 holds.
+    tyre_margin : float
+        Rear-tyre adhesion margin ``μ_r·N_r / (m g sin θ)`` [–]; ≥ 1 holds.
+    time_to_slip_s : float
+        When the brake margin first falls below 1 [s]; NaN if the brake holds for the whole duration.
+    holds : bool
+        True when both margins stay ≥ 1.
+    reason : str
+        ``"holds"`` or what gives way, in words.
+    outcome : str
+        One of :data:`OUTCOMES`: ``held``, ``brake_slip``, ``tyre_skid``, ``self_locking``.
+    least_hand_force_N : float or None
+        Least lever force [N] whose brake margin stays ≥ 1 over the duration; None where no hand
+        force can hold (the tyres slide, the shoe self-locks, or μ_d = 0).
+    risk : rollaway.uncertainty.Risk or None
+        With ``uncertainty=N`` (:func:`rollaway.hold`): the N draws from the model's covariance.
+    """
 
     brake_margin_min: float
     tyre_margin: float
@@ -27,18 +48,34 @@ class HoldVerdict:
     reason: str
     outcome: str = "held"                      # one of OUTCOMES
     least_hand_force_N: float | None = None    # None where no hand force can hold (tyres, self-locking, μ_d = 0)
+    risk: object | None = field(default=None, repr=False, compare=False)   # rollaway.uncertainty.Risk
+
+    @property
+    def slip_time_s(self) -> float | None:
+        """When the brake first slips [s]; None if it holds for the whole duration."""
+        return None if not np.isfinite(self.time_to_slip_s) else float(self.time_to_slip_s)
+
+    @property
+    def rollaway_probability(self) -> float | None:
+        """Share of the parameter draws that roll away [–] (None without ``uncertainty``)."""
+        return None if self.risk is None else self.risk.rollaway_probability
 
     def _repr_html_(self) -> str:  # notebooks
         from rollaway.display import result_html
         head = "HOLDS" if self.holds else f"ROLLS AWAY ({self.reason})" if self.outcome != "self_locking" \
             else f"SELF-LOCKING: {self.reason}"
-        return result_html(head, {k: v for k, v in self.as_dict().items() if k not in ("holds", "reason")}, self.holds)
+        rows = {k: v for k, v in self.as_dict().items() if k not in ("holds", "reason", "uncertainty")}
+        if self.risk is not None:
+            rows["rollaway_probability"] = self.rollaway_probability
+        return result_html(head, rows, self.holds)
 
     def as_dict(self) -> dict:
-        slip = None if not np.isfinite(self.time_to_slip_s) else float(self.time_to_slip_s)
-        return {"verdict": self.outcome, "holds": self.holds, "reason": self.reason,
-                "brake_margin_min": _finite_or_none(self.brake_margin_min), "slip_time_s": slip,
-                "tyre_margin": _finite_or_none(self.tyre_margin), "least_hand_force_N": self.least_hand_force_N}
+        out = {"verdict": self.outcome, "holds": self.holds, "reason": self.reason,
+               "brake_margin_min": _finite_or_none(self.brake_margin_min), "slip_time_s": self.slip_time_s,
+               "tyre_margin": _finite_or_none(self.tyre_margin), "least_hand_force_N": self.least_hand_force_N}
+        if self.risk is not None:
+            out["uncertainty"] = self.risk.as_dict()
+        return out
 
 
 def _finite_or_none(x: float):

@@ -24,6 +24,7 @@ import numpy as np
 
 from rollaway.effects import available_effects, get_effect
 from rollaway.identify.calibrate import FitResult, calibrate, evaluate
+from rollaway.identify.export import CalibratedModelMixin
 from rollaway.identify.fitting import single_blas_thread
 from rollaway.identify.measurements import Measurements
 from rollaway.identify.noise import Noise, noise_estimate
@@ -38,7 +39,13 @@ PARTIAL_SHARE = 0.5          # "explains most of the baseline's excess error"
 
 
 @dataclass
-class Diagnosis:
+class Diagnosis(CalibratedModelMixin):
+    """What :func:`diagnose` found: ``verdict`` (the missing effect, or ``"none"``), the evidence, the fits.
+
+    ``model`` / ``save_model(path)``: the calibrated drum model of the verdict; ``report(path)``: an HTML page.
+    """
+
+    _command = "diagnose"
     data: Measurements
     paper: FitResult
     baseline: FitResult
@@ -103,8 +110,12 @@ class Diagnosis:
         return diagnosis_html(self)
 
     def report(self, path) -> None:
+        """Write a self-contained HTML report (verdict, evidence, figures) to *path*."""
         from rollaway.identify.report import diagnosis_report
         diagnosis_report(self, path)
+
+    def _calibrated_fit(self):
+        return self.refined
 
 
 def _f(x):
