@@ -65,13 +65,41 @@ def direction_to_sign(direction) -> np.ndarray:
 
 
 class DrumModel:
-    """Parameter set + effects + effect values (+ covariance and provenance when calibrated).
+    """The drum brake: a parameter set + effects + effect values (+ covariance and provenance when calibrated).
 
-    ``values`` maps ``"<effect>.<parameter>"`` to a value; missing ones are the effect's neutral
-    value.  The baseline values μ_d and h live in :attr:`params`.
+    Parameters
+    ----------
+    params : str or path-like or BrakeParameters, default "paper"
+        A parameter-set name (``"paper"``), a parameter file, or a model file (``.toml``, e.g. one
+        written by ``Diagnosis.save_model``): a model file brings its effects, fitted values,
+        covariance and provenance with it.
+    effects : sequence of str or Effect, optional
+        Physical effects added to the paper's chain (``rollaway.identify.available_effects()``
+        lists them: ``lining_creep``, ``friction_temperature``, ...), after a file's own.
+    values : dict, optional
+        ``{"effect.parameter": value}`` in the parameter's unit (e.g. ``{"lining_creep.relaxed_fraction":
+        0.12}``); missing ones are the effect's neutral value (no change).  Overrides a file's.
+    covariance : Covariance, optional
+        Covariance of fitted values (``mu_drum``, ``heat_transfer_W_m2K``, ``effect.parameter``), for
+        ``rollaway.hold(..., uncertainty=N)``.
+
+    Attributes
+    ----------
+    params : BrakeParameters
+        The parameter set; its values read through the model too (``model.mu_drum`` [–]).  The
+        baseline values μ_d and h live here.
+    effects : tuple of Effect
+    values : dict
+        Every effect parameter's value, neutral ones included.
+
+    Examples
+    --------
+    >>> m = rollaway.DrumModel("paper", effects=["lining_creep"], values={"lining_creep.relaxed_fraction": 0.12})
+    >>> s = m.evaluate(time_s=[0, 1800, 3600], hand_force_N=300, direction="uphill")
+    >>> s.torque_Nm                                       # per drum [N·m]        # doctest: +SKIP
     """
 
-    def __init__(self, params: BrakeParameters | str | None = None, effects=(), values: dict | None = None, *,
+    def __init__(self, params: BrakeParameters | str | Path | None = "paper", effects=(), values: dict | None = None, *,
                  covariance: Covariance | None = None, provenance: dict | None = None, name: str | None = None,
                  base: str | None = None, effect_files: dict | None = None):
         from rollaway.effects import get_effect
