@@ -7,15 +7,18 @@
 # tyres, the load transfer and the car rolling back.
 
 # %%
+# %matplotlib inline
+import base64
 import tempfile
 from pathlib import Path
 
-import matplotlib.pyplot as plt
-from IPython.display import Image
+from matplotlib.figure import Figure
+from IPython.display import HTML
 
 import rollaway
 
-ROOT = next(p for p in [Path.cwd(), *Path.cwd().parents] if (p / "pyproject.toml").exists())
+here = Path.cwd()
+ROOT = next(p for p in [here, *here.parents] if (p / "pyproject.toml").exists())
 scenario = ROOT / "scenarios" / "hot-parking-rollaway.toml"
 print(scenario.read_text())
 
@@ -23,9 +26,10 @@ print(scenario.read_text())
 # ## What the analytic check predicts
 
 # %%
-v = rollaway.hold("paper", grade_pct=20, hand_force_N=220, direction="uphill", occupants=1, duration_s=1800)
-print(f"holds: {v.holds}; the brake slips at t = {v.slip_time_s:.0f} s; least hand force for 30 min: "
-      f"{v.least_hand_force_N:.0f} N")
+v = rollaway.hold("paper", grade_pct=20, hand_force_N=220, direction="uphill",
+                  occupants=1, duration_s=1800)
+print(f"holds: {v.holds}; the brake slips at t = {v.slip_time_s:.0f} s")
+print(f"least hand force that holds 30 min: {v.least_hand_force_N:.0f} N")
 
 # %% [markdown]
 # ## Simulate it, and render the run
@@ -34,11 +38,14 @@ print(f"holds: {v.holds}; the brake slips at t = {v.slip_time_s:.0f} s; least ha
 # MP4 or PNG; a hold plays as a time-lapse, real time from 2 s before the roll-away.
 
 # %%
-out = Path(tempfile.mkdtemp())
-r = rollaway.simulate(scenario, render=out / "hot-parking.gif", render_options={"size": (320, 180), "fps": 8})
-print(f"outcome: {r.outcome}; roll-away at t = {r.rollaway_time_s:.0f} s "
-      f"(analytic slip {r.analytic_time_to_slip_s:.0f} s; the car passes the 5 cm gate a few seconds later)")
-Image(filename=out / "hot-parking.gif")
+gif = Path(tempfile.mkdtemp()) / "hot-parking.gif"
+r = rollaway.simulate(scenario, render=gif,
+                      render_options={"size": (320, 180), "fps": 8})
+print(f"outcome: {r.outcome}; roll-away at t = {r.rollaway_time_s:.0f} s")
+print(f"analytic slip: {r.analytic_time_to_slip_s:.0f} s "
+      "(the car passes the 5 cm gate a few seconds after the brake slips)")
+HTML('<img alt="the car rolls back as the drum cools" src="data:image/gif;base64,'
+     + base64.b64encode(gif.read_bytes()).decode() + '">')
 
 # %% [markdown]
 # ## The trace
@@ -48,12 +55,13 @@ Image(filename=out / "hot-parking.gif")
 
 # %%
 tr = r.trace
-fig, (a1, a2) = plt.subplots(2, 1, figsize=(7, 5), sharex=True)
+fig = Figure(figsize=(7, 5))
+a1, a2 = fig.subplots(2, 1, sharex=True)
 a1.plot(tr.time_s, abs(tr.displacement_m) * 100)
 a1.axhline(5, color="r", lw=0.8, ls="--", label="roll-away gate, 5 cm")
-a1.set(ylabel="|travel along slope| [cm]", yscale="symlog")
+a1.set(ylabel="|travel| [cm]", yscale="symlog", ylim=(0, None))
 a1.legend()
-a2.plot(tr.time_s, tr.capacity_Nm.sum(axis=1), label="rear drums' capacity")
+a2.plot(tr.time_s, tr.capacity_Nm.sum(axis=1), label="rear drums")
 a2.axhline(r.demand_Nm, color="k", lw=1, label="demand T_req (eq. 23)")
 a2.set(xlabel="time [s]", ylabel="torque [N·m]")
 a2.legend()

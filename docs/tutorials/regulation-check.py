@@ -8,12 +8,13 @@
 # Everything here uses only `import rollaway`.
 
 # %%
+# %matplotlib inline
 import numpy as np
-import matplotlib.pyplot as plt
+from matplotlib.figure import Figure
 
 import rollaway
 
-model = rollaway.DrumModel("paper")       # Ishak et al. 2018, Table 1, plus the values it does not give
+model = rollaway.DrumModel("paper")   # Ishak et al. 2018, Table 1 + what it does not give
 model
 
 # %% [markdown]
@@ -24,9 +25,11 @@ model
 # hold while their adhesion margin stays ≥ 1.
 
 # %%
-v = rollaway.hold(model, grade_pct=20, hand_force_N=400, direction="downhill", occupants=5, duration_s=300)
-print(f"holds: {v.holds}; least brake margin {v.brake_margin_min:.2f}; tyre margin {v.tyre_margin:.2f}; "
-      f"least hand force that holds: {v.least_hand_force_N:.0f} N")
+v = rollaway.hold(model, grade_pct=20, hand_force_N=400, direction="downhill",
+                  occupants=5, duration_s=300)
+print(f"holds: {v.holds}")
+print(f"least brake margin {v.brake_margin_min:.2f}, tyre margin {v.tyre_margin:.2f}")
+print(f"least hand force that holds: {v.least_hand_force_N:.0f} N")
 
 # %% [markdown]
 # ## Every preset at once
@@ -38,8 +41,8 @@ print(f"holds: {v.holds}; least brake margin {v.brake_margin_min:.2f}; tyre marg
 # %%
 result = rollaway.check(["all"], analytic=True)
 print("every case holds" if result.passed else f"{len(result.failed)} case(s) fail")
-result.table()[["preset", "direction", "grade_pct", "hand_force_N", "min_brake_margin", "tyre_margin",
-                "min_hand_force_N", "verdict", "reason"]]
+result.table()[["preset", "direction", "grade_pct", "hand_force_N",
+                "min_brake_margin", "tyre_margin", "verdict", "reason"]]
 
 # %% [markdown]
 # ## How the margin falls as the drum cools
@@ -49,11 +52,14 @@ result.table()[["preset", "direction", "grade_pct", "hand_force_N", "min_brake_m
 
 # %%
 t = np.linspace(0, 3600, 361)
-fig, ax = plt.subplots(figsize=(7, 3.5))
+fig = Figure(figsize=(7, 3.5))
+ax = fig.subplots()
 for force in (200, 250, 400):
-    ax.plot(t / 60, rollaway.hold.hold_margin(model, t, force, 20, "uphill", 5), label=f"{force} N")
+    margin = rollaway.hold.hold_margin(model, t, force, 20, "uphill", 5)
+    ax.plot(t / 60, margin, label=f"{force} N")
 ax.axhline(1, color="k", lw=1)
-ax.set(xlabel="time parked [min]", ylabel="brake hold margin [–]", title="20 %, facing uphill, laden, from 200 °C")
+ax.set(xlabel="time parked [min]", ylabel="brake hold margin [–]",
+       title="20 %, facing uphill, laden, from 200 °C")
 ax.legend()
 fig
 
@@ -61,9 +67,10 @@ fig
 # The least hand force that holds for the whole hour, solved in closed form:
 
 # %%
-v = rollaway.hold(model, grade_pct=20, hand_force_N=250, direction="uphill", occupants=5, duration_s=3600)
-print(f"250 N: {'holds' if v.holds else f'slips at {v.slip_time_s:.0f} s'}; "
-      f"least hand force for the hour: {v.least_hand_force_N:.0f} N")
+v = rollaway.hold(model, grade_pct=20, hand_force_N=250, direction="uphill",
+                  occupants=5, duration_s=3600)
+print("250 N:", "holds" if v.holds else f"slips at {v.slip_time_s:.0f} s")
+print(f"least hand force for the hour: {v.least_hand_force_N:.0f} N")
 
 # %% [markdown]
 # ## The gate CI runs: the same presets simulated in MuJoCo
@@ -75,4 +82,5 @@ print(f"250 N: {'holds' if v.holds else f'slips at {v.slip_time_s:.0f} s'}; "
 # %%
 gate = rollaway.check(["fmvss135", "unr13h"])
 print("PASS" if gate.passed else "FAIL")
-gate.table()[["target", "direction", "brake_margin_min", "tyre_margin", "sim_outcome", "verdict"]]
+gate.table()[["target", "direction", "brake_margin_min", "tyre_margin",
+              "sim_outcome", "verdict"]]

@@ -20,19 +20,22 @@ import rollaway
 from rollaway.api import build_scenario
 from rollaway.sweep import grid_spec
 
-base = build_scenario(name="fmvss135-uphill", grade_pct=20, direction="uphill", occupants=5, hand_force_N=400,
-                      duration_s=300, initial_drum_temp_C=200)
-spec = grid_spec(base, {"grade_pct": [g / 2 for g in range(0, 101, 5)], "occupants": [0, 1, 3, 5],
-                        "hand_force_N": [150, 200, 300, 400, 500], "direction": ["uphill", "downhill"]},
-                 simulate="none")
+base = build_scenario(name="fmvss135", grade_pct=20, direction="uphill", occupants=5,
+                      hand_force_N=400, duration_s=300, initial_drum_temp_C=200)
+grid = {"grade_pct": [g / 2 for g in range(0, 101, 5)],      # 0, 2.5, ..., 50 %
+        "occupants": [0, 1, 3, 5],
+        "hand_force_N": [150, 200, 300, 400, 500],
+        "direction": ["uphill", "downhill"]}
+spec = grid_spec(base, grid, simulate="none")
 print(len(spec.points), "points")
 
 # %%
 out = Path(tempfile.mkdtemp()) / "grade-load"
 res = rollaway.sweep(spec, out)
-print(f"{res.n_points} points in {res.wall_time_s:.2f} s; wrote", ", ".join(f.name for f in res.files))
-res.table[["grade_pct", "occupants", "hand_force_N", "direction", "brake_margin_min", "tyre_margin",
-           "verdict"]].head(8)
+print(f"{res.n_points} points in {res.wall_time_s:.2f} s")
+print("wrote", ", ".join(f.name for f in res.files))
+res.table[["grade_pct", "occupants", "hand_force_N", "direction",
+           "brake_margin_min", "tyre_margin", "verdict"]].head(8)
 
 # %% [markdown]
 # ## The design chart
@@ -42,7 +45,7 @@ res.table[["grade_pct", "occupants", "hand_force_N", "direction", "brake_margin_
 # hand force. Facing uphill is the critical direction for the brake; facing downhill, the tyres.
 
 # %%
-Image(filename=out / "plots" / "design-chart.png")
+Image(filename=str(out / "plots" / "design-chart.png"))
 
 # %% [markdown]
 # ## The hold / roll-away map
@@ -53,7 +56,7 @@ Image(filename=out / "plots" / "design-chart.png")
 # %%
 maps = sorted((out / "plots").glob("map-grade-*.png"))
 print([m.name for m in maps])
-Image(filename=maps[0])
+Image(filename=str(maps[0]))
 
 # %% [markdown]
 # ## The table is a pandas DataFrame
