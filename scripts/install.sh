@@ -18,12 +18,12 @@ if [ ${#need[@]} -gt 0 ]; then
     echo "[install] missing system packages ${need[*]}: run 'sudo apt-get install -y ${need[*]}'" >&2
   fi
 fi
-echo "[install] pip install -e .[test]"
+echo "[install] pip install -e .[test,docs]"
 # pip's output is shown without its notes about local index folders configured on this kind of
 # machine but absent (harmless); every real warning and error is kept.
 log=$(mktemp)
 status=0
-python -m pip install -q --disable-pip-version-check --root-user-action=ignore -e '.[test]' >"$log" 2>&1 || status=$?
+python -m pip install -q --disable-pip-version-check --root-user-action=ignore -e '.[test,docs]' >"$log" 2>&1 || status=$?
 grep -v "is ignored: it is neither a file nor a directory" "$log" || true
 rm -f "$log"
 [ "$status" = 0 ] || { echo "[install] pip install failed (exit $status)" >&2; exit "$status"; }

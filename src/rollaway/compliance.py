@@ -1,22 +1,21 @@
-"""The CI gate: simulate the regulation scenarios in MuJoCo; pass only if none slips or skids.
+"""Regulation checks: the CI gate (MuJoCo) and the paper's analytic check of the presets.
 
-``rollaway check`` (without ``--analytic``) runs :func:`simulated_check`.  Targets are regulation
+:func:`run_check` is ``rollaway check`` and :func:`rollaway.check`.  Without ``analytic`` it is the
+gate: it simulates the regulation scenarios in MuJoCo and passes only if none slips or skids.  Targets are regulation
 presets (default ``fmvss135`` and ``unr13h``: 400 N, 20 %, laden, facing up- and downhill) and/or
 scenario TOML files.  Each scenario is simulated once (identical cases of two presets share
 one simulation); the table shows the analytic margins next to the simulated outcome, and
-the exit code is 0 only when every scenario holds, 1 otherwise (with the failing rows), 2 for
-a bad target.
+the command's exit code is 0 only when every scenario holds, 1 otherwise (with the failing rows), 2 for
+a bad target.  With ``analytic`` every preset case is checked by :func:`rollaway.hold.analytic_verdict`.
 """
 from __future__ import annotations
 
 import dataclasses
-import sys
+from dataclasses import dataclass
 from pathlib import Path
 
-import typer
-
-from rollaway.cli.output import write_table
 from rollaway.errors import UserError, check_choice
+from rollaway.hold import analytic_verdict
 from rollaway.parameters import BrakeParameters
 from rollaway.regulations import PRESETS, get_preset
 from rollaway.scenario import Scenario, load_scenario, preset_scenarios
@@ -96,28 +95,89 @@ def gate_table(pairs: list[tuple[str, Scenario]]) -> dict[str, list]:
     return cols
 
 
-def simulated_check(names, params: BrakeParameters | None, fmt: str) -> int:
-    """Run the gate on *names* (presets and/or scenario files); print the table; 0 pass, 1 fail."""
-    pairs = gate_scenarios(list(names or DEFAULT_TARGETS), params)
-    cols = gate_table(pairs)
-    if fmt == "table":      # the screen table: the columns that decide, short names (csv/json keep them all)
-        short = {"scenario": "scenario", "grade_pct": "grade %", "occupants": "occ.", "hand_force_N": "force N",
-                 "brake_margin_min": "brake margin", "tyre_margin": "tyre margin", "sim_outcome": "simulated",
-                 "verdict": "verdict"}
-        write_table({v: cols[k] for k, v in short.items()}, fmt, precision=3)
-    else:
-        write_table(cols, fmt, precision=4)
-    failed = [i for i, v in enumerate(cols["verdict"]) if v == "FAIL"]
-    say = (lambda m: typer.echo(m)) if fmt == "table" else (lambda m: print(m, file=sys.stderr))
-    if fmt == "table":
-        for n in dict.fromkeys(t for t, _ in pairs):
-            if n in PRESETS:
-                say(f"  {n}: {get_preset(n).source}")
-    if not failed:
-        say(f"all {len(pairs)} scenarios hold in the MuJoCo simulation")
-        return 0
-    say(f"{len(failed)} of {len(pairs)} scenarios roll away in the MuJoCo simulation:")
-    for i in failed:
-        say(f"  FAIL {cols['target'][i]} / {cols['scenario'][i]} (facing {cols['direction'][i]}, "
-            f"{cols['grade_pct'][i]:g} %, {cols['hand_force_N'][i]:g} N): {cols['reason'][i]}")
-    return 1
+def analytic_rows(preset_names, params, uncertainty: int | None = None) -> dict[str, list]:
+    """The paper's analytic check of each preset case (one row per preset and facing)."""
+    cols: dict[str, list] = {k: [] for k in (
+        "preset", "direction", "grade_pct", "occupants", "hand_force_N", "duration_s", "min_brake_margin",
+        "tyre_margin", "min_hand_force_N", "verdict", "reason")}
+    if uncertainty is not None:
+        cols["rollaway_probability"] = []
+    for name in preset_names:
+        pr = get_preset(name)
+        for d in pr.directions:
+            v = analytic_verdict(params, hand_force_N=pr.hand_force_N, grade_pct=pr.grade_pct, direction=d,
+                                 occupants=pr.occupants, duration_s=pr.duration_s, initial_temp_C=pr.initial_temp_C)
+            # no number where none holds: the tyres slide (or the shoe self-locks) whatever the hand force
+            fmin = float("nan") if v.least_hand_force_N is None else v.least_hand_force_N
+            for k, val in (("preset", name), ("direction", d), ("grade_pct", pr.grade_pct),
+                           ("occupants", pr.occupants), ("hand_force_N", pr.hand_force_N),
+                           ("duration_s", pr.duration_s), ("min_brake_margin", v.brake_margin_min),
+                           ("tyre_margin", v.tyre_margin), ("min_hand_force_N", fmin),
+                           ("verdict", "PASS" if v.holds else "FAIL"), ("reason", v.reason)):
+                cols[k].append(val)
+            if uncertainty is not None:
+                from rollaway.uncertainty import rollaway_risk
+                cols["rollaway_probability"].append(rollaway_risk(
+                    params, hand_force_N=pr.hand_force_N, grade_pct=pr.grade_pct, direction=d, occupants=pr.occupants,
+                    duration_s=pr.duration_s, initial_temp_C=pr.initial_temp_C, draws=uncertainty).rollaway_probability)
+    return cols
+
+
+@dataclass(frozen=True)
+class CheckResult:
+    """The rows of a regulation check, each with its verdict ``PASS``/``FAIL`` and reason.
+
+    Attributes
+    ----------
+    columns : dict of str to list
+        The table, column by column (``verdict``, ``reason``, margins, ...).
+    targets : list of str
+        The presets and scenario files checked.
+    analytic : bool
+        True for the paper's analytic check, False for the MuJoCo gate.
+    """
+
+    columns: dict
+    targets: list
+    analytic: bool
+
+    @property
+    def passed(self) -> bool:
+        """True when every case holds."""
+        return "FAIL" not in self.columns["verdict"]
+
+    @property
+    def failed(self) -> list[int]:
+        """Row numbers of the failing cases."""
+        return [i for i, v in enumerate(self.columns["verdict"]) if v == "FAIL"]
+
+    def table(self):
+        """The rows as a :class:`pandas.DataFrame`."""
+        import pandas as pd
+        return pd.DataFrame(self.columns)
+
+    def _repr_html_(self) -> str:  # notebooks
+        head = "<p><b>" + ("all cases hold" if self.passed else f"{len(self.failed)} cases fail") + "</b></p>"
+        return head + self.table().to_html(index=False)
+
+
+def run_check(targets=(), model=None, *, analytic: bool = False, uncertainty: int | None = None) -> CheckResult:
+    """Check regulation presets (and, simulated, scenario files) with a drum model (None: the paper set).
+
+    Targets: preset names (``fmvss135``, ``unr13h``, ``paper30``; ``"all"`` for every preset) and,
+    without *analytic*, scenario TOML files (each names its own model); default: fmvss135, unr13h.
+    *uncertainty*: with *analytic*, N draws from the model's covariance give each case's roll-away
+    probability.
+    """
+    names = list(targets or DEFAULT_TARGETS)
+    if names == ["all"]:
+        names = list(PRESETS)
+    if not analytic:
+        return CheckResult(gate_table(gate_scenarios(names, model)), names, False)
+    for n in names:
+        if n not in PRESETS and n.lower().endswith(".toml"):
+            raise UserError(f"'{n}' is a scenario file; --analytic checks the regulation presets "
+                            f"({', '.join(PRESETS)}) — simulate the file with 'rollaway check {n}' (no --analytic) "
+                            f"or check one case with 'rollaway hold'")
+        get_preset(n)
+    return CheckResult(analytic_rows(names, as_model(model), uncertainty), names, True)

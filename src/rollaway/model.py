@@ -25,10 +25,12 @@ pass arrays of time, hand force, direction, μ_d, T_0 — or of effect values �
 from __future__ import annotations
 
 from dataclasses import dataclass, fields
+from pathlib import Path
 
 import numpy as np
 from numpy.typing import ArrayLike
 
+from rollaway.covariance import Covariance
 from rollaway.effects.base import Effect, ModelState
 from rollaway.effects.hooks import call_hook
 from rollaway.errors import UserError
@@ -58,26 +60,6 @@ class BrakeSeries:
                 "normal_force_N": self.normal_force_N, "torque_Nm": self.torque_Nm}
 
 
-@dataclass(frozen=True)
-class Covariance:
-    """Covariance of fitted parameters: names (``"mu_drum"``, ``"lining_creep.relaxed_fraction"``) and matrix."""
-
-    names: tuple[str, ...]
-    matrix: np.ndarray
-
-    def __post_init__(self):
-        m = np.asarray(self.matrix, float)
-        object.__setattr__(self, "matrix", m)
-        object.__setattr__(self, "names", tuple(self.names))
-        if m.shape != (len(self.names), len(self.names)):
-            raise UserError(f"covariance: matrix is {m.shape[0]}×{m.shape[1] if m.ndim > 1 else 1} but "
-                            f"{len(self.names)} names are given; give one row and column per name")
-
-    @property
-    def stderr(self) -> dict[str, float]:
-        return {n: float(np.sqrt(max(self.matrix[i, i], 0.0))) for i, n in enumerate(self.names)}
-
-
 def direction_to_sign(direction) -> np.ndarray:
     """+1 facing downhill (eq. 18), −1 uphill (eq. 19); accepts names or numeric signs."""
     d = np.asarray(direction)
@@ -87,20 +69,55 @@ def direction_to_sign(direction) -> np.ndarray:
 
 
 class DrumModel:
-    """Parameter set + effects + effect values (+ covariance and provenance when calibrated).
+    """The drum brake: a parameter set + effects + effect values (+ covariance and provenance when calibrated).
 
-    ``values`` maps ``"<effect>.<parameter>"`` to a value; missing ones are the effect's neutral
-    value.  The baseline values μ_d and h live in :attr:`params`.
+    Parameters
+    ----------
+    params : str or path-like or BrakeParameters, default "paper"
+        A parameter-set name (``"paper"``), a parameter file, or a model file (``.toml``, e.g. one
+        written by ``Diagnosis.save_model``): a model file brings its effects, fitted values,
+        covariance and provenance with it.
+    effects : sequence of str or Effect, optional
+        Physical effects added to the paper's chain (``rollaway.identify.available_effects()``
+        lists them: ``lining_creep``, ``friction_temperature``, ...), after a file's own.
+    values : dict, optional
+        ``{"effect.parameter": value}`` in the parameter's unit (e.g. ``{"lining_creep.relaxed_fraction":
+        0.12}``); missing ones are the effect's neutral value (no change).  Overrides a file's.
+    covariance : Covariance, optional
+        Covariance of fitted values (``mu_drum``, ``heat_transfer_W_m2K``, ``effect.parameter``), for
+        ``rollaway.hold(..., uncertainty=N)``.
+
+    Attributes
+    ----------
+    params : BrakeParameters
+        The parameter set; its values read through the model too (``model.mu_drum`` [–]).  The
+        baseline values μ_d and h live here.
+    effects : tuple of Effect
+    values : dict
+        Every effect parameter's value, neutral ones included.
+
+    Examples
+    --------
+    >>> m = rollaway.DrumModel("paper", effects=["lining_creep"], values={"lining_creep.relaxed_fraction": 0.12})
+    >>> s = m.evaluate(time_s=[0, 1800, 3600], hand_force_N=300, direction="uphill")
+    >>> s.torque_Nm                                       # per drum [N·m]        # doctest: +SKIP
     """
 
-    def __init__(self, params: BrakeParameters | str | None = None, effects=(), values: dict | None = None, *,
+    def __init__(self, params: BrakeParameters | str | Path | None = "paper", effects=(), values: dict | None = None, *,
                  covariance: Covariance | None = None, provenance: dict | None = None, name: str | None = None,
-                 base: str | None = None, effect_files: dict | None = None):
+                 base: str | None = None, effect_files: dict | None = None, calibration: dict | None = None):
         from rollaway.effects import get_effect
 
-        if not isinstance(params, BrakeParameters):     # a set name, parameter file or model file: its set
-            from rollaway.model_file import load_model
-            params = load_model(params).params
+        if not isinstance(params, BrakeParameters):     # a set name, parameter file or model file
+            from rollaway.model_file import read_model
+            parts = read_model(params)
+            params, effects = parts["params"], (*parts["effects"], *effects)
+            values = {**parts["values"], **(values or {})}
+            covariance = parts["covariance"] if covariance is None else covariance
+            provenance = parts["provenance"] if provenance is None else provenance
+            name, base = name or parts["name"], base or parts["base"]
+            effect_files = {**parts["effect_files"], **(effect_files or {})}
+            calibration = parts["calibration"] if calibration is None else calibration
         self.params = params
         self.effects: tuple[Effect, ...] = tuple(get_effect(e) for e in effects)
         names = [e.name for e in self.effects]
@@ -119,7 +136,7 @@ class DrumModel:
         self.name = name or (self.params.name + "".join(" + " + n for n in names))
         self.base = base or "paper"              # named set the parameters extend (model files)
         self.effect_files = dict(effect_files or {})   # effect name -> plugin file it came from
-        self.calibration: dict[str, str] = {}          # brake parameter -> what the bench data said of it
+        self.calibration: dict[str, str] = dict(calibration or {})   # brake parameter -> what the bench data said
 
     # -- bookkeeping -------------------------------------------------------------------
     def __getattr__(self, name: str):
@@ -171,12 +188,11 @@ class DrumModel:
 
     def _copy(self, **kw) -> "DrumModel":
         args = dict(params=self.params, effects=self.effects, values=self.values, covariance=self.covariance,
-                    provenance=self.provenance, base=self.base, effect_files=self.effect_files)
+                    provenance=self.provenance, base=self.base, effect_files=self.effect_files,
+                    calibration=self.calibration)
         same_name = self.name == (self.params.name + "".join(" + " + e.name for e in self.effects))
         args.update(kw)
-        out = DrumModel(**args, name=None if same_name else self.name)
-        out.calibration = dict(self.calibration)
-        return out
+        return DrumModel(**args, name=None if same_name else self.name)
 
     def fitted_values(self) -> dict[str, float]:
         """Every value a calibration may move: the brake parameters (:mod:`rollaway.drum_parameters`) and
@@ -382,14 +398,17 @@ def _all_neutral(effect: Effect, v: dict) -> bool:
     return False
 
 
+def load_model(source: str | Path | None = None) -> DrumModel:
+    """A named set (``"paper"``), a parameter file or a model file as a :class:`DrumModel` (= ``DrumModel(source)``)."""
+    return DrumModel(source)
+
+
 def as_model(model_or_params) -> DrumModel:
     """A :class:`DrumModel` from a model, a parameter set, a set name or a file (None: the paper set)."""
     if isinstance(model_or_params, DrumModel):
         return model_or_params
-    if isinstance(model_or_params, BrakeParameters):
-        return DrumModel(model_or_params)
-    from rollaway.model_file import load_model
-    return load_model(model_or_params)
+    return DrumModel(model_or_params)
 
 
-__all__ = ["BrakeSeries", "Covariance", "DrumModel", "as_model", "direction_to_sign"]
+__all__ = ["BASELINE_BOUNDS", "BASELINE_FREE", "BASELINE_UNITS", "BrakeSeries", "Covariance", "DrumModel",
+           "as_model", "direction_to_sign", "load_model"]

@@ -26,6 +26,10 @@ Every name is validated (unknown effect, parameter or table: an error naming the
 key, with the closest match); ``--params FILE.toml`` accepts a model file in every command.
 ``shoe_arm_ratio`` (l_fr/l_f) in ``[covariance]`` and ``[calibration]`` is the set's
 ``shoe_arm_friction_m / shoe_arm_normal_m``.
+
+This module is the file format only: :func:`read_model` returns the parts of a model (the keyword
+arguments of :class:`~rollaway.model.DrumModel`), which builds the model from them
+(``DrumModel("fitted.toml")`` or :func:`rollaway.model.load_model`); :func:`save_model` writes one.
 """
 from __future__ import annotations
 
@@ -37,25 +41,28 @@ from pathlib import Path
 import numpy as np
 
 from rollaway.errors import UserError, read_toml, suggest
-from rollaway.model import BASELINE_FREE, Covariance, DrumModel
+from rollaway.covariance import BASELINE_FREE, Covariance
 from rollaway.parameters import PARAMETER_SETS, SPEC_BY_NAME, BrakeParameters, load_parameters, parameters_from_mapping
 
 TABLES = ("effects", "covariance", "provenance", "calibration")
 
 
-def load_model(source: str | Path | None = None) -> DrumModel:
-    """A named set (``"paper"``), a parameter file or a model file as a :class:`DrumModel`."""
+def read_model(source: str | Path | None = None) -> dict:
+    """The parts of a named set (``"paper"``), a parameter file or a model file, as keyword arguments of
+    :class:`~rollaway.model.DrumModel`: ``params``, ``effects``, ``values``, ``covariance``, ``provenance``,
+    ``name``, ``base``, ``effect_files``, ``calibration``."""
     if source is None or str(source) in PARAMETER_SETS:
-        return DrumModel(load_parameters(source))
+        return dict(params=load_parameters(source), effects=(), values={}, covariance=None, provenance={},
+                    name=None, base=None, effect_files={}, calibration={})
     path = Path(str(source))
     if path.suffix != ".toml" and not path.exists():
         load_parameters(source)          # raises the "unknown parameter set" error with its hint
     data = read_toml(path, "parameter or model file", "see 'rollaway params' for the keys")
-    return model_from_mapping(data, where=str(path), base_dir=path.parent)
+    return model_parts(data, where=str(path), base_dir=path.parent)
 
 
-def model_from_mapping(data: dict, where: str = "model", base_dir: Path | None = None) -> DrumModel:
-    """Validate a parsed model file (see the module docstring) into a :class:`DrumModel`."""
+def model_parts(data: dict, where: str = "model", base_dir: Path | None = None) -> dict:
+    """Validate a parsed model file (see the module docstring) into the keyword arguments of a DrumModel."""
     data = dict(data)
     tables = {k: data.pop(k) for k in TABLES if k in data}
     for key, value in data.items():
@@ -67,14 +74,12 @@ def model_from_mapping(data: dict, where: str = "model", base_dir: Path | None =
     base = data.get("extends") if isinstance(data.get("extends"), str) else None
     effects, values, files = _effects(tables.get("effects", {}), where, base_dir)
     name = Path(where).stem if where.endswith(".toml") else None
-    model = DrumModel(params, effects, values, base=base, name=name, effect_files=files)
-    if "covariance" in tables:
-        model.covariance = _covariance(tables["covariance"], model, where)
-    if "provenance" in tables:
-        model.provenance = _provenance(tables["provenance"], where)
-    if "calibration" in tables:
-        model.calibration = _calibration(tables["calibration"], where)
-    return model
+    fitted = [*BASELINE_FREE, *(f"{e.name}.{p.name}" for e in effects for p in e.parameters)]
+    covariance = _covariance(tables["covariance"], fitted, where) if "covariance" in tables else None
+    provenance = _provenance(tables["provenance"], where) if "provenance" in tables else {}
+    calibration = _calibration(tables["calibration"], where) if "calibration" in tables else {}
+    return dict(params=params, effects=tuple(effects), values=values, covariance=covariance, provenance=provenance,
+                name=name, base=base, effect_files=files, calibration=calibration)
 
 
 def _calibration(table, where: str) -> dict:
@@ -138,7 +143,7 @@ def _number(value, where: str, key: str, unit: str = "") -> float:
     return float(value)
 
 
-def _covariance(table, model: DrumModel, where: str) -> Covariance:
+def _covariance(table, fitted: list[str], where: str) -> Covariance:
     table = _table(table, where, "covariance")
     for key in table:
         if key not in ("names", "matrix"):
@@ -148,7 +153,6 @@ def _covariance(table, model: DrumModel, where: str) -> Covariance:
     if not isinstance(names, list) or not all(isinstance(n, str) for n in names) or not names:
         raise UserError(f"{where}: key 'covariance.names' must be a list of parameter names, e.g. "
                         f"[\"mu_drum\", \"lining_creep.relaxed_fraction\"]")
-    fitted = model.fitted_values()
     for n in names:
         if n not in fitted:
             raise UserError(f"{where}: key 'covariance.names' names '{n}'{suggest(n, fitted)}, which is not a value "
@@ -205,8 +209,9 @@ def _value(v) -> str:
     return tomli_w.dumps({"x": v}).split("=", 1)[1].strip()
 
 
-def model_to_toml(model: DrumModel, comment: str = "") -> str:
-    """The model as a model file a person can read and edit (round-trips through :func:`load_model`)."""
+def model_to_toml(model, comment: str = "") -> str:
+    """A :class:`~rollaway.model.DrumModel` as a model file a person can read and edit (round-trips through
+    :func:`read_model`)."""
     base_name = model.base if model.base in PARAMETER_SETS else "paper"
     base = BrakeParameters(**PARAMETER_SETS[base_name], name=base_name)
     se = model.covariance.stderr if model.covariance is not None else {}
@@ -241,7 +246,7 @@ def model_to_toml(model: DrumModel, comment: str = "") -> str:
     return "\n".join(lines) + "\n"
 
 
-def save_model(model: DrumModel, path: str | Path, comment: str = "") -> Path:
+def save_model(model, path: str | Path, comment: str = "") -> Path:
     """Write :func:`model_to_toml` to *path* (its folder is created)."""
     from rollaway.errors import ensure_parent_dir
     p = ensure_parent_dir(path, "--save-model")
@@ -249,4 +254,4 @@ def save_model(model: DrumModel, path: str | Path, comment: str = "") -> Path:
     return p
 
 
-__all__ = ["BASELINE_FREE", "load_model", "model_from_mapping", "model_to_toml", "provenance_for", "save_model"]
+__all__ = ["BASELINE_FREE", "model_parts", "model_to_toml", "provenance_for", "read_model", "save_model"]

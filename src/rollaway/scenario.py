@@ -131,7 +131,7 @@ def scenario_from_mapping(data: dict, where: str = "scenario", base_dir: Path | 
     src = data.get("params") if params is None else params
     if params is None and src is not None and base_dir is not None and src.endswith(".toml"):
         src = str((base_dir / src))
-    from rollaway.model_file import load_model
+    from rollaway.model import load_model
     try:
         model = load_model(src)
     except UserError as exc:       # a mistake inside the referenced file also names this file and key

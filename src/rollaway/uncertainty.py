@@ -89,7 +89,7 @@ def rollaway_risk(model: DrumModel, *, hand_force_N: float, grade_pct: float, di
                   seed: int | None = 0) -> Risk:
     """Probability of a roll-away over [0, duration_s] and percentiles, from *draws* parameter draws."""
     from rollaway.hold import _effective, required_torque, tyre_adhesion_margin, validate_hand_force
-    from rollaway.hold_numeric import MarginFunction, Subset, first_slip_time, least_margin
+    from rollaway.hold.numeric import MarginFunction, Subset, first_slip_time, least_margin
 
     vals = draw_values(model, draws, seed)
     g, sign = _effective(grade_pct, direction)

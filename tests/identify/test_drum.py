@@ -121,7 +121,7 @@ def test_per_test_offsets_make_eq24_unidentifiable_and_say_so():
 
 
 def test_report_text_json_and_model_file_carry_the_identifiability(tmp_path):
-    from rollaway.model_file import load_model
+    from rollaway.model import load_model
     dg = diagnose(generate(drum=OTHER_DRUMS["all_together"], seed=13, directions=("downhill",)))
     text = dg.summary()
     assert "Your drum" in text and "not tested" in text and "shoe_arm_ratio" in text

@@ -6,7 +6,8 @@ import pytest
 
 from rollaway.errors import UserError
 from rollaway.model import Covariance, DrumModel
-from rollaway.model_file import load_model, model_to_toml, save_model
+from rollaway.model import load_model
+from rollaway.model_file import model_to_toml, save_model
 
 T = np.linspace(0, 3600, 13)
 

@@ -1,47 +1,21 @@
-"""``rollaway check``: regulation hold checks (analytic here; MuJoCo gate in :mod:`rollaway.compliance`)."""
+"""``rollaway check``: regulation hold checks (the MuJoCo gate, or the analytic check); :func:`rollaway.check`."""
 from __future__ import annotations
 
+import sys
 from typing import List, Optional
 
-import numpy as np
 import typer
 
 from rollaway.cli import options as opt
 
 from rollaway.cli.output import FORMATS, write_table
-from rollaway.errors import UserError, check_choice
-from rollaway.hold import analytic_verdict
-from rollaway.model_file import load_model
+from rollaway.errors import check_choice
 from rollaway.regulations import PRESETS, get_preset
 
 DEFAULT_PRESETS = ("fmvss135", "unr13h")
-
-
-def analytic_rows(preset_names, params, uncertainty: int | None = None) -> dict[str, list]:
-    cols: dict[str, list] = {k: [] for k in (
-        "preset", "direction", "grade_pct", "occupants", "hand_force_N", "duration_s", "min_brake_margin",
-        "tyre_margin", "min_hand_force_N", "verdict", "reason")}
-    if uncertainty is not None:
-        cols["rollaway_probability"] = []
-    for name in preset_names:
-        pr = get_preset(name)
-        for d in pr.directions:
-            v = analytic_verdict(params, hand_force_N=pr.hand_force_N, grade_pct=pr.grade_pct, direction=d,
-                                 occupants=pr.occupants, duration_s=pr.duration_s, initial_temp_C=pr.initial_temp_C)
-            # no number where none holds: the tyres slide (or the shoe self-locks) whatever the hand force
-            fmin = float("nan") if v.least_hand_force_N is None else v.least_hand_force_N
-            for k, val in (("preset", name), ("direction", d), ("grade_pct", pr.grade_pct),
-                           ("occupants", pr.occupants), ("hand_force_N", pr.hand_force_N),
-                           ("duration_s", pr.duration_s), ("min_brake_margin", v.brake_margin_min),
-                           ("tyre_margin", v.tyre_margin), ("min_hand_force_N", fmin),
-                           ("verdict", "PASS" if v.holds else "FAIL"), ("reason", v.reason)):
-                cols[k].append(val)
-            if uncertainty is not None:
-                from rollaway.uncertainty import rollaway_risk
-                cols["rollaway_probability"].append(rollaway_risk(
-                    params, hand_force_N=pr.hand_force_N, grade_pct=pr.grade_pct, direction=d, occupants=pr.occupants,
-                    duration_s=pr.duration_s, initial_temp_C=pr.initial_temp_C, draws=uncertainty).rollaway_probability)
-    return cols
+SHORT = {"scenario": "scenario", "grade_pct": "grade %", "occupants": "occ.", "hand_force_N": "force N",
+         "brake_margin_min": "brake margin", "tyre_margin": "tyre margin", "sim_outcome": "simulated",
+         "verdict": "verdict"}       # the gate's screen table: the columns that decide (csv/json keep them all)
 
 
 def check(
@@ -63,34 +37,37 @@ def check(
     (UN R13-H), paper30 (the paper's 30 % case).  --params applies to the presets; a scenario
     file names its own parameter set.
     """
+    from rollaway.api import check as run_check
+
     check_choice(fmt, FORMATS, "format")
-    p = load_model(params)
-    names = list(targets or DEFAULT_PRESETS)
-    if names == ["all"]:
-        names = list(PRESETS)
     if not analytic:
         from rollaway.cli.inputs import expect_scenario
-        from rollaway.compliance import simulated_check  # the MuJoCo gate
-        for n in names:
-            if n not in PRESETS:
+        for n in targets or ():
+            if n not in PRESETS and n != "all":
                 expect_scenario(n, "check")
-        return simulated_check(names, p if params else None, fmt)
-    for n in names:
-        if n not in PRESETS and n.lower().endswith(".toml"):
-            raise UserError(f"'{n}' is a scenario file; --analytic checks the regulation presets "
-                            f"({', '.join(PRESETS)}) — simulate the file with 'rollaway check {n}' (no --analytic) "
-                            f"or check one case with 'rollaway hold'")
-        get_preset(n)
-    cols = analytic_rows(names, p, uncertainty)
-    write_table(cols, fmt, precision=4)
+    res = run_check(targets or (), model=params, analytic=analytic, uncertainty=uncertainty)
+    cols = res.columns
+    if fmt == "table" and not analytic:
+        write_table({v: cols[k] for k, v in SHORT.items()}, fmt, precision=3)
+    else:
+        write_table(cols, fmt, precision=4)
+    say = typer.echo if fmt == "table" else (lambda m: print(m, file=sys.stderr))
     if fmt == "table":
-        for n in names:
-            typer.echo(f"  {n}: {get_preset(n).source}")
-    failed = int(np.sum(np.array(cols["verdict"]) == "FAIL"))
-    if fmt == "table":
-        typer.echo(f"{len(cols['verdict']) - failed} passed, {failed} failed" if failed else
-                   f"all {len(cols['verdict'])} cases hold")
-    return 1 if failed else 0
+        for n in res.targets:
+            if n in PRESETS:
+                say(f"  {n}: {get_preset(n).source}")
+    n, failed = len(cols["verdict"]), res.failed
+    if analytic:
+        if fmt == "table":
+            say(f"{n - len(failed)} passed, {len(failed)} failed" if failed else f"all {n} cases hold")
+    elif not failed:
+        say(f"all {n} scenarios hold in the MuJoCo simulation")
+    else:
+        say(f"{len(failed)} of {n} scenarios roll away in the MuJoCo simulation:")
+        for i in failed:
+            say(f"  FAIL {cols['target'][i]} / {cols['scenario'][i]} (facing {cols['direction'][i]}, "
+                f"{cols['grade_pct'][i]:g} %, {cols['hand_force_N'][i]:g} N): {cols['reason'][i]}")
+    return 0 if res.passed else 1
 
 
 def register(app: typer.Typer) -> None:

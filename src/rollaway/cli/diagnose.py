@@ -1,4 +1,4 @@
-"""``rollaway diagnose``: which physical effect is the paper's model missing?"""
+"""``rollaway diagnose``: which physical effect is the paper's model missing? (:func:`rollaway.diagnose`)"""
 from __future__ import annotations
 
 from typing import List, Optional
@@ -33,18 +33,18 @@ def diagnose(
     """Calibrate your drum (the brake parameters these data identify, each test's T_0), then select
     catalogue effects forward (BIC and leave-one-test-out prediction) for what it leaves, and say which
     effects are missing (or 'none') with the evidence and an identifiability report."""
-    from rollaway.identify.diagnose import diagnose as run
+    from rollaway.api import diagnose as run
 
     from rollaway.cli.output import REPORT_FORMATS
     from rollaway.errors import check_choice
     check_choice(fmt, REPORT_FORMATS, "--format")
     prepare_outputs(report=report, json_out=json_out, save_model=save_model)
     load_plugins(effect_file)
-    diag = run(load_data(data), params, noise_torque_Nm=noise_torque_Nm or None, noise_temp_C=noise_temp_C or None,
-               free=free or None, fix=fix)
+    diag = run(load_data(data), params=params, noise_torque_Nm=noise_torque_Nm or None,
+               noise_temp_C=noise_temp_C or None, free=free or None, fix=fix)
     write_outputs(diag, report=report, json_out=json_out, fmt=fmt)
     if save_model:
-        typer.echo(f"model: {diag.save_model(save_model, data)} (your drum + the verdict's effects; use it with "
+        typer.echo(f"model: {diag.save_model(save_model)} (your drum + the verdict's effects; use it with "
                    f"--params)", err=fmt == "json")
 
 

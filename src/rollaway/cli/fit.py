@@ -1,4 +1,4 @@
-"""``rollaway fit``: refit with effects added and watch the error fall (the error ladder)."""
+"""``rollaway fit``: refit with effects added and watch the error fall (the error ladder; :func:`rollaway.fit`)."""
 from __future__ import annotations
 
 from typing import List, Optional
@@ -24,7 +24,7 @@ def fit(
 ) -> None:
     """Error ladder: paper defaults → calibrated baseline → + each effect (each rung calibrated), with the
     fitted parameters, 95 % intervals and bound warnings."""
-    from rollaway.identify.ladder import fit as run
+    from rollaway.api import fit as run
 
     from rollaway.cli.output import REPORT_FORMATS
     from rollaway.errors import check_choice
@@ -34,11 +34,11 @@ def fit(
     effects = parse_effects(effect)
     d = load_data(data)
     start = {f"{n}.{k}": v for n, vals in effects.items() for k, v in vals.items()}
-    ladder = run(d, list(effects), params, start=start)
+    ladder = run(d, list(effects), params=params, start=start)
     write_outputs(ladder, report=report, json_out=json_out, plot=plot, fmt=fmt)
     if save_model:
-        from rollaway.identify.export import save_fit
-        typer.echo(f"model: {save_fit(ladder.final, save_model, data, 'fit')} (use it with --params)")
+        typer.echo(f"model: {ladder.save_model(save_model)} (use it with --params)")
+
 
 def register(app: typer.Typer) -> None:
     app.command("fit")(fit)

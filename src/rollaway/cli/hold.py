@@ -1,4 +1,4 @@
-"""``rollaway hold``: the analytic hold check of one case over time, for any drum model."""
+"""``rollaway hold``: the analytic hold check of one case over time, for any drum model (:func:`rollaway.hold`)."""
 from __future__ import annotations
 
 import json
@@ -12,8 +12,8 @@ from rollaway.cli import options as opt
 from rollaway.cli.brake import load_cli_model, time_grid_s
 from rollaway.cli.output import FORMATS, write_table
 from rollaway.errors import UserError, check_choice
-from rollaway.hold import (analytic_verdict, effective_slope, hold_margin, required_torque, validate_grade,
-                           validate_hand_force, validate_occupants)
+from rollaway.hold import (effective_slope, hold_margin, required_torque, validate_grade, validate_hand_force,
+                           validate_occupants)
 from rollaway.jsonsafe import to_jsonable
 from rollaway.physics.drum import DIRECTIONS
 from rollaway.scenario import MAX_DURATION_S
@@ -52,13 +52,10 @@ def hold(
     model = load_cli_model(params, [("mu_drum", mu, "--mu"), ("initial_drum_temp_C", t0_C, "--t0-C"),
                                     ("tyre_road_mu", tyre_mu, "--tyre-mu")])
     t = time_grid_s(duration_s, dt_s, "--duration-s")
-    v = analytic_verdict(model, hand_force_N=hand_force_N, grade_pct=grade_pct, direction=direction,
-                         occupants=occupants, duration_s=duration_s)
-    risk = None
-    if uncertainty is not None:
-        from rollaway.uncertainty import rollaway_risk
-        risk = rollaway_risk(model, hand_force_N=hand_force_N, grade_pct=grade_pct, direction=direction,
-                             occupants=occupants, duration_s=duration_s, draws=uncertainty, seed=seed)
+    from rollaway.api import hold as run
+    v = run(model, hand_force_N=hand_force_N, grade_pct=grade_pct, direction=direction, occupants=occupants,
+            duration_s=duration_s, initial_drum_temp_C=None, uncertainty=uncertainty, seed=seed)
+    risk = v.risk
     if v.outcome == "self_locking":
         if fmt == "json":
             typer.echo(json.dumps(to_jsonable({**v.as_dict(), "model": model.name}), indent=1))

@@ -6,7 +6,7 @@ from typing import Optional
 import typer
 
 from rollaway.cli.output import write_table
-from rollaway.model_file import load_model
+from rollaway.model import load_model
 from rollaway.parameters import SPEC_BY_NAME
 
 

@@ -1,4 +1,4 @@
-"""``rollaway simulate``: run one scenario in MuJoCo, print the outcome, optionally render it."""
+"""``rollaway simulate``: run one scenario in MuJoCo, print the outcome, optionally render it (:func:`rollaway.simulate`)."""
 from __future__ import annotations
 
 import json
@@ -90,9 +90,9 @@ def simulate(
     FILE.toml from 'rollaway fit --save-model').  Exit code 3 when the simulation diverged
     (outcome `diverged`, reason printed): no verdict.
     """
+    from rollaway.api import build_scenario
+    from rollaway.api import simulate as run_sim
     from rollaway.cli.inputs import expect_scenario
-    from rollaway.scenario import load_scenario
-    from rollaway.sim import simulate as run_sim
     from rollaway.sim.render import check_render_path
     from rollaway.sim.run import EXIT_DIVERGED, MODES
 
@@ -106,7 +106,7 @@ def simulate(
     if json_file is not None:
         ensure_parent_dir(json_file, "--json")
     expect_scenario(scenario_file, "simulate")
-    scenario = load_scenario(scenario_file, params=params)
+    scenario = build_scenario(scenario_file, model=params)
     if uncertainty is not None:
         scenario = _percentile_draw(scenario, uncertainty, percentile)
     result = run_sim(scenario, render=render, mode=mode, render_options=render_opts)

@@ -1,4 +1,4 @@
-"""``rollaway sweep SWEEP.toml``: map where a design holds and where it rolls away."""
+"""``rollaway sweep SWEEP.toml``: map where a design holds and where it rolls away (:func:`rollaway.sweep`)."""
 from __future__ import annotations
 
 from pathlib import Path
@@ -62,8 +62,9 @@ def sweep(
 
     Exit 0 when the sweep completes (failed points are rows with an 'error'), 130 when interrupted.
     """
+    from rollaway.api import sweep as run_sweep
     from rollaway.cli.inputs import expect_sweep
-    from rollaway.sweep import load_sweep, run_sweep
+    from rollaway.sweep import load_sweep
     from rollaway.sweep.spec import SIMULATE_MODES
 
     if simulate is not None:
@@ -76,17 +77,9 @@ def sweep(
     check_choice(fmt, REPORT_FORMATS, "--format")
     expect_sweep(spec_path)
     spec = load_sweep(spec_path)
-    if params is not None:
-        from rollaway.model_file import load_model
-        spec = spec.with_model(load_model(params))
-    if uncertainty is not None and spec.base.model.covariance is None:
-        raise UserError("--uncertainty needs a model file with a [covariance] table; give --params FILE.toml "
-                        "saved by 'rollaway fit --save-model'")
     out_dir = Path(out) if out else Path(f"{spec.name}-results")
-    if out_dir.exists() and not out_dir.is_dir():
-        raise UserError(f"--out '{out_dir}' is a file; give a folder")
     log = (lambda msg: None) if quiet else (lambda msg: typer.echo(msg, err=True))
-    res = run_sweep(spec, out_dir, workers=workers, dask_address=dask, simulate=simulate, progress=not quiet,
+    res = run_sweep(spec, out_dir, model=params, workers=workers, dask_address=dask, simulate=simulate, progress=not quiet,
                     plots=not no_plots, retry_failed=retry_failed, fresh=fresh, log=log, uncertainty=uncertainty)
     if res.interrupted:
         done = int(res.table["simulated"].sum())

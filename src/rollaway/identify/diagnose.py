@@ -25,6 +25,7 @@ import numpy as np
 from rollaway.effects import available_effects, get_effect
 from rollaway.identify.calibrate import FitResult, calibrate, evaluate
 from rollaway.identify.drum import DrumCalibration, calibrate_drum, predictive_covariance, recheck
+from rollaway.identify.export import CalibratedModelMixin
 from rollaway.identify.fitting import single_blas_thread
 from rollaway.identify.measurements import Measurements
 from rollaway.identify.noise import Noise, noise_estimate
@@ -39,7 +40,13 @@ PARTIAL_SHARE = 0.5          # "explains most of the baseline's excess error"
 
 
 @dataclass
-class Diagnosis:
+class Diagnosis(CalibratedModelMixin):
+    """What :func:`diagnose` found: ``verdict`` (the missing effect, or ``"none"``), the evidence, the fits.
+
+    ``model`` / ``save_model(path)``: the calibrated drum model of the verdict; ``report(path)``: an HTML page.
+    """
+
+    _command = "diagnose"
     data: Measurements
     paper: FitResult
     baseline: FitResult
@@ -108,14 +115,12 @@ class Diagnosis:
         return diagnosis_html(self)
 
     def report(self, path) -> None:
+        """Write a self-contained HTML report (verdict, evidence, figures) to *path*."""
         from rollaway.identify.report import diagnosis_report
         diagnosis_report(self, path)
 
-    def save_model(self, path, data_path=None):
-        """Write the calibrated model (the user's drum + the verdict's effects, covariance with the
-        doubt of every fixed brake parameter, the identifiability record) as a model file."""
-        from rollaway.identify.export import save_fit
-        return save_fit(self.refined, path, data_path or self.data.source, "diagnose")
+    def _calibrated_fit(self):
+        return self.refined
 
 
 def _f(x):

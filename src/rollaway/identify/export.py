@@ -45,10 +45,38 @@ def calibrated_model(fit, data_path: str | Path | None = None, command: str = "f
     return model
 
 
-def save_fit(fit, path: str | Path, data_path: str | Path, command: str) -> Path:
-    """Write the calibrated model of *fit* as a model file."""
+def save_fit(fit, path: str | Path, data_path: str | Path | None, command: str) -> Path:
+    """Write the calibrated model of *fit* as a model file (*data_path*: the CSV it was fitted on, or None)."""
     from rollaway.model_file import save_model
 
     model = calibrated_model(fit, data_path, command)
     effects = ", ".join(e.name for e in model.effects) or "no effect (paper chain, calibrated)"
-    return save_model(model, path, comment=f"Calibrated by 'rollaway {command}' on {Path(data_path).name}: {effects}.")
+    on = f" on {Path(data_path).name}" if data_path is not None else ""
+    return save_model(model, path, comment=f"Calibrated by 'rollaway {command}'{on}: {effects}.")
+
+
+def data_file(data) -> Path | None:
+    """The file *data* (:class:`~rollaway.identify.measurements.Measurements`) was read from, if it still exists."""
+    p = Path(str(getattr(data, "source", "")))
+    return p if p.is_file() else None
+
+
+class CalibratedModelMixin:
+    """``.model`` and ``.save_model(path)`` of a result whose :meth:`_calibrated_fit` is the fit to keep."""
+
+    _command = "fit"
+
+    def _calibrated_fit(self):
+        raise NotImplementedError
+
+    @property
+    def model(self) -> DrumModel:
+        """The calibrated drum model: parameter set with the fitted μ_d and h, effects, values, covariance and
+        provenance (the data file's name and SHA-256 when the data were read from a file)."""
+        fit = self._calibrated_fit()
+        return calibrated_model(fit, data_file(fit.data), self._command)
+
+    def save_model(self, path: str | Path) -> Path:
+        """Write :attr:`model` as a model file (TOML) for ``DrumModel(path)`` or ``--params path``; returns the path."""
+        fit = self._calibrated_fit()
+        return save_fit(fit, path, data_file(fit.data), self._command)

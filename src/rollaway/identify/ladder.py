@@ -4,12 +4,13 @@ from __future__ import annotations
 from dataclasses import dataclass
 
 from rollaway.identify.calibrate import FitResult, calibrate, evaluate
+from rollaway.identify.export import CalibratedModelMixin
 from rollaway.effects import get_effect
 from rollaway.identify.measurements import Measurements
 
 
 @dataclass
-class Ladder:
+class Ladder(CalibratedModelMixin):
     """Rungs: paper defaults → calibrated baseline → + each effect in turn (each rung calibrated)."""
 
     data: Measurements
@@ -64,8 +65,12 @@ class Ladder:
         return self.summary()
 
     def report(self, path) -> None:
+        """Write a self-contained HTML report of the ladder to *path*."""
         from rollaway.identify.report import ladder_report
         ladder_report(self, path)
+
+    def _calibrated_fit(self):
+        return self.final
 
     def plot(self, path=None):
         from rollaway.figures.ladder import ladder_figure

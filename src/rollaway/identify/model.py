@@ -60,6 +60,8 @@ class BenchModel:
         self.free: tuple[str, ...] = LEGACY_FREE
         if isinstance(params, DrumPlan):
             self.free, params = params.free, params.params
+        if not isinstance(params, (DrumModel, BrakeParameters)):   # a set name or file: its parameter set only,
+            params = DrumModel(params).params                        # the effects fitted are the ones given
         self.drum = params if isinstance(params, DrumModel) else DrumModel(params, effects)
         self.params = self.drum.params
         self.effects: list[Effect] = list(self.drum.effects)

@@ -273,7 +273,6 @@ def _candidate_rows(diag) -> list[list]:
 
 
 def diagnosis_report(diag, path) -> None:
-    from rollaway.identify.ladder import Ladder
     from rollaway.identify.report_figures import ladder_figure, residual_figure, signals_figure
     noise = _noise(diag)
     verdict = getattr(diag, "verdict", "none")
@@ -317,7 +316,7 @@ def diagnosis_report(diag, path) -> None:
                "is better; about the number of samples when the model predicts down to the noise). Only "
                "candidates with ΔBIC below −10 are cross-validated.</p>")
     body += "<h2>Fit of the refined model</h2>" + fit_statistics(diag.refined, noise)
-    body += "<h2>Error ladder</h2>" + plot(ladder_figure(Ladder(diag.data, fits)))
+    body += "<h2>Error ladder</h2>" + plot(ladder_figure(diag.data, fits))
     body += ("<h2>Signals: calibrated paper model (dashed) and refined (solid)</h2>"
              + plot(signals_figure([("calibrated paper model", diag.baseline), ("refined", diag.refined)])))
     body += "<h2>Residuals of the calibrated paper model</h2>" + plot(residual_figure(diag.baseline, noise))
@@ -343,7 +342,7 @@ def ladder_report(ladder, path) -> None:
     body = (f"<p class='verdict{'' if good else ' bad'}'>{esc(verdict)}</p><p>{esc(design)}</p>"
             "<h2>Error ladder</h2>" + table(["model", "torque RMSE [N·m]", "temp. RMSE [°C]",
                                              "ΔBIC vs calibrated paper model", "fitted parameters"], rows)
-            + plot(ladder_figure(ladder)))
+            + plot(ladder_figure(ladder.data, ladder.rungs)))
     if design_tab:
         body += "<h2>Design case</h2>" + design_tab
     body += ("<h2>Fit of the last rung</h2>" + fit_statistics(ladder.final)

@@ -185,16 +185,20 @@ def residual_figure(fit, noise: dict, band: float = 2.5, title: str = "") -> dic
                                                   margin={"l": 70, "r": 20, "t": 50, "b": 60})}
 
 
-def ladder_figure(ladder) -> dict:
-    """RMSE per rung on each channel (own axis each), and the torque curves and residuals before/after."""
+def ladder_figure(data, rungs) -> dict:
+    """RMSE per rung on each channel (own axis each), and the torque curves and residuals before/after.
+
+    *rungs*: ``(name, fit)`` pairs, the paper model first, then the calibrated one (the "before"),
+    the last one is the "after" (as in :class:`rollaway.identify.ladder.Ladder`).
+    """
     axes, refs = grid(2, 2, hgap=0.1, vgap=0.2,
                       titles=["torque error", "temperature error", "measured and model", "residual before and after"],
                       xtitles=["torque RMSE [N·m]", "temperature RMSE [°C]", "time [s]", "time [s]"],
                       ytitles=["", "", "torque per drum [N·m]", "torque residual [N·m]"])
-    names = [textwrap.fill(n.strip(), 30).replace("\n", "<br>") for n, _ in ladder.rungs]
+    names = [textwrap.fill(n.strip(), 30).replace("\n", "<br>") for n, _ in rungs]
     traces = []
-    for ref, vals, color, unit in ((refs[0], [f.rmse_torque_Nm for _, f in ladder.rungs], "#1f77b4", "N·m"),
-                                   (refs[1], [f.rmse_temp_C for _, f in ladder.rungs], "#ff7f0e", "°C")):
+    for ref, vals, color, unit in ((refs[0], [f.rmse_torque_Nm for _, f in rungs], "#1f77b4", "N·m"),
+                                   (refs[1], [f.rmse_temp_C for _, f in rungs], "#ff7f0e", "°C")):
         traces.append({"type": "bar", "orientation": "h", "x": num(vals), "y": names, "xaxis": ref[0],
                        "yaxis": ref[1], "marker": {"color": color}, "showlegend": False,
                        "text": [f"{v:.3g}" for v in vals], "textposition": "outside", "cliponaxis": False,
@@ -202,10 +206,10 @@ def ladder_figure(ladder) -> dict:
     for k in (1, 2):
         axes[f"yaxis{'' if k == 1 else k}"].update(autorange="reversed", type="category")
     axes["yaxis2"]["showticklabels"] = False
-    for k, vals in (("xaxis", [f.rmse_torque_Nm for _, f in ladder.rungs]),
-                    ("xaxis2", [f.rmse_temp_C for _, f in ladder.rungs])):
+    for k, vals in (("xaxis", [f.rmse_torque_Nm for _, f in rungs]),
+                    ("xaxis2", [f.rmse_temp_C for _, f in rungs])):
         axes[k]["range"] = [0.0, 1.25 * max([v for v in vals if np.isfinite(v)] + [1e-9])]   # room for the labels
-    data, before, after = ladder.data, ladder.baseline, ladder.final
+    before, after = rungs[1][1], rungs[-1][1]
     cols, labels = colors(data.n_tests), legend_labels(data)
     traces += points_by_test(data, data.time_s, data.torque_Nm, refs[2], cols, labels, "N·m", True, size=5)
     traces += curves_by_test(data, before.prediction.torque_Nm, refs[2], cols, "calibrated paper model", "dash",

@@ -57,7 +57,7 @@ _STATUS = {"held": ("HELD", (40, 150, 60)), "brake_slip": ("ROLLING AWAY: the br
 
 def check_render_path(path) -> Path:
     """Validate an output path (known suffix; its folder is created) and the GL setting (UserError)."""
-    from rollaway.sim import INVALID_MUJOCO_GL
+    from rollaway.sim.gl import INVALID_MUJOCO_GL
     if INVALID_MUJOCO_GL is not None:
         raise UserError(f"--render {path}: MUJOCO_GL={INVALID_MUJOCO_GL!r} is not a MuJoCo GL backend; "
                         f"set MUJOCO_GL=egl or MUJOCO_GL=osmesa (or unset it)")

@@ -1,6 +1,6 @@
 """Numeric hold check for a drum model with effects: least margin, slip time, least hand force.
 
-The paper's chain has closed forms (:mod:`rollaway.hold`); an effect can make the torque
+The paper's chain has closed forms (:mod:`rollaway.hold.closed_form`); an effect can make the torque
 non-monotone in time (a lagging lining, a relaxing clamp force) or non-affine in the hand
 force, so here each point is solved numerically, vectorised over points:
 

@@ -1,4 +1,4 @@
-"""Analytic hold check: will the parked car stay put? (docs/model.md, the hold check)
+"""Closed-form hold check: margins, slip time and least hand force of the paper's chain (docs/model.md).
 
 Two conditions, both from a static balance:
 
@@ -13,11 +13,10 @@ the fall line (a car "facing downhill" on −20 % faces uphill on 20 %).
 Everything is vectorised.  Every function takes a parameter set or a
 :class:`~rollaway.model.DrumModel`.  For the paper's chain closed forms replace scans (it is
 affine in u_6 and ΔT, and ΔT(t) is monotone); a model with effects is solved numerically
-(:mod:`rollaway.hold_numeric`: dense evaluation plus bracketing refinement).
+(:mod:`rollaway.hold.numeric`: dense evaluation plus bracketing refinement).  The verdict of one
+case is put together in :mod:`rollaway.hold.verdict`.
 """
 from __future__ import annotations
-
-from dataclasses import dataclass
 
 import numpy as np
 from numpy.typing import ArrayLike
@@ -115,7 +114,7 @@ def _numeric(model_or_params) -> DrumModel | None:
 
 def _margin_function(model: DrumModel, hand_force_N, grade_pct, direction, occupants, mu_drum, gap_m,
                      initial_temp_C):
-    from rollaway.hold_numeric import MarginFunction
+    from rollaway.hold.numeric import MarginFunction
     g, sign = _effective(grade_pct, direction)
     t_req = required_torque(model.params, g, occupants)
     return MarginFunction(model, validate_hand_force(hand_force_N), sign, t_req, mu_drum, gap_m, initial_temp_C)
@@ -176,7 +175,7 @@ def min_brake_margin(params: BrakeParameters, hand_force_N: ArrayLike, grade_pct
     """
     model = _numeric(params)
     if model is not None:
-        from rollaway.hold_numeric import least_margin
+        from rollaway.hold.numeric import least_margin
         fn = _margin_function(model, hand_force_N, grade_pct, direction, occupants, mu_drum, gap_m, initial_temp_C)
         shape = np.broadcast_shapes(fn.shape, np.shape(duration_s))
         return least_margin(fn, np.broadcast_to(duration_s, fn.shape).ravel()).reshape(shape)
@@ -204,7 +203,7 @@ def time_to_slip_s(params: BrakeParameters, hand_force_N: ArrayLike, grade_pct: 
     """
     model = _numeric(params)
     if model is not None:
-        from rollaway.hold_numeric import first_slip_time
+        from rollaway.hold.numeric import first_slip_time
         fn = _margin_function(model, hand_force_N, grade_pct, direction, occupants, mu_drum, gap_m, initial_temp_C)
         horizon = np.where(np.isfinite(horizon_s), horizon_s, NUMERIC_HORIZON_S)
         return first_slip_time(fn, np.broadcast_to(horizon, fn.shape).ravel()).reshape(fn.shape)
@@ -244,7 +243,7 @@ def minimum_hand_force_N(params: BrakeParameters, grade_pct: ArrayLike, directio
     """
     model = _numeric(params)
     if model is not None:
-        from rollaway.hold_numeric import least_hand_force
+        from rollaway.hold.numeric import least_hand_force
         fn = _margin_function(model, 0.0, grade_pct, direction, occupants, mu_drum, gap_m, initial_temp_C)
         shape = np.broadcast_shapes(fn.shape, np.shape(duration_s))
         return least_hand_force(fn, np.broadcast_to(duration_s, fn.shape).ravel()).reshape(shape)
@@ -271,66 +270,3 @@ def self_locking(params: Model, grade_pct: ArrayLike, direction="downhill", mu_d
     _, sign = _effective(grade_pct, direction)
     mu = p.mu_drum if mu_drum is None else np.asarray(mu_drum, float)
     return np.isinf(shoe_factor(p, _direction_of(sign), mu))
-
-
-OUTCOMES = ("held", "brake_slip", "tyre_skid", "self_locking")
-
-
-@dataclass(frozen=True)
-class HoldVerdict:
-    """Outcome of the analytic check for one case."""
-
-    brake_margin_min: float
-    tyre_margin: float
-    time_to_slip_s: float     # NaN if the brake holds for the whole duration
-    holds: bool
-    reason: str
-    outcome: str = "held"                      # one of OUTCOMES
-    least_hand_force_N: float | None = None    # None where no hand force can hold (tyres, self-locking, μ_d = 0)
-
-    def _repr_html_(self) -> str:  # notebooks
-        from rollaway.display import result_html
-        head = "HOLDS" if self.holds else f"ROLLS AWAY ({self.reason})" if self.outcome != "self_locking" \
-            else f"SELF-LOCKING: {self.reason}"
-        return result_html(head, {k: v for k, v in self.as_dict().items() if k not in ("holds", "reason")}, self.holds)
-
-    def as_dict(self) -> dict:
-        slip = None if not np.isfinite(self.time_to_slip_s) else float(self.time_to_slip_s)
-        return {"verdict": self.outcome, "holds": self.holds, "reason": self.reason,
-                "brake_margin_min": _finite_or_none(self.brake_margin_min), "slip_time_s": slip,
-                "tyre_margin": _finite_or_none(self.tyre_margin), "least_hand_force_N": self.least_hand_force_N}
-
-
-def _finite_or_none(x: float):
-    return float(x) if np.isfinite(x) else None
-
-
-def analytic_verdict(params: Model, *, hand_force_N: float, grade_pct: float, direction: str,
-                     occupants: int, duration_s: float, initial_temp_C: float | None = None,
-                     mu_drum: float | None = None) -> HoldVerdict:
-    """Check one case over [0, duration_s]: least brake margin, slip time, tyre margin, least hand force.
-
-    A self-locking shoe (eqs. 18–21) is outside the 1D model: outcome ``self_locking``, not a hold.
-    """
-    tyre = float(tyre_adhesion_margin(params, grade_pct, direction, occupants))
-    if bool(self_locking(params, grade_pct, direction, mu_drum)):
-        mu = _params(params).mu_drum if mu_drum is None else mu_drum
-        return HoldVerdict(np.inf, tyre, np.nan, False,
-                           f"the shoe self-locks (μ_d = {mu:g} ≥ l_f/l_fr, eqs. 18–21): outside the 1D model, "
-                           f"no finite torque to check", "self_locking", None)
-    t_slip = float(time_to_slip_s(params, hand_force_N, grade_pct, direction, occupants, mu_drum, None,
-                                  initial_temp_C, horizon_s=duration_s))
-    brake_min = float(min_brake_margin(params, hand_force_N, grade_pct, direction, occupants, duration_s,
-                                       mu_drum, None, initial_temp_C))
-    fmin = float(minimum_hand_force_N(params, grade_pct, direction, occupants, duration_s, mu_drum, None,
-                                      initial_temp_C))
-    least_force = fmin if (np.isfinite(fmin) and tyre >= 1.0) else None
-    reasons = []
-    if brake_min < 1.0:
-        reasons.append(f"brake slips at t = {t_slip:.0f} s" if np.isfinite(t_slip) else "brake slips")
-    if tyre < 1.0:
-        reasons.append("rear tyres skid (adhesion)")
-    m_start = float(hold_margin(params, 0.0, hand_force_N, grade_pct, direction, occupants, mu_drum, None,
-                                initial_temp_C))
-    outcome = "held" if not reasons else ("tyre_skid" if tyre < 1.0 and tyre <= m_start else "brake_slip")
-    return HoldVerdict(brake_min, tyre, t_slip, not reasons, "; ".join(reasons) or "holds", outcome, least_force)
