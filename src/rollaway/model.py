@@ -105,7 +105,8 @@ class DrumModel:
 
     def __init__(self, params: BrakeParameters | str | Path | None = "paper", effects=(), values: dict | None = None, *,
                  covariance: Covariance | None = None, provenance: dict | None = None, name: str | None = None,
-                 base: str | None = None, effect_files: dict | None = None, calibration: dict | None = None):
+                 base: str | None = None, effect_files: dict | None = None, calibration: dict | None = None,
+                 predictive: dict | None = None, alternatives: list | None = None):
         from rollaway.effects import get_effect
 
         if not isinstance(params, BrakeParameters):     # a set name, parameter file or model file
@@ -118,6 +119,7 @@ class DrumModel:
             name, base = name or parts["name"], base or parts["base"]
             effect_files = {**parts["effect_files"], **(effect_files or {})}
             calibration = parts["calibration"] if calibration is None else calibration
+            predictive = parts["predictive"] if predictive is None else predictive
         self.params = params
         self.effects: tuple[Effect, ...] = tuple(get_effect(e) for e in effects)
         names = [e.name for e in self.effects]
@@ -137,6 +139,8 @@ class DrumModel:
         self.base = base or "paper"              # named set the parameters extend (model files)
         self.effect_files = dict(effect_files or {})   # effect name -> plugin file it came from
         self.calibration: dict[str, str] = dict(calibration or {})   # brake parameter -> what the bench data said
+        self.predictive: dict = dict(predictive or {})    # model error, tested range (rollaway.predictive)
+        self._alternatives = alternatives                 # [(weight, DrumModel)] competing effect sets
 
     # -- bookkeeping -------------------------------------------------------------------
     def __getattr__(self, name: str):
@@ -155,6 +159,14 @@ class DrumModel:
         if self.covariance is not None:
             rows.update({f"σ {k}": v for k, v in self.covariance.stderr.items()})
         return result_html(f"drum model {self.name}", rows)
+
+    @property
+    def alternatives(self) -> list[tuple[float, "DrumModel"]]:
+        """Competing effect sets the bench data could not rule out, with their weights (the model itself
+        keeps 1 − Σ weights); loaded from the files the model file names."""
+        if self._alternatives is None:
+            self._alternatives = [(a["weight"], DrumModel(a["file"])) for a in self.predictive.get("alternatives", [])]
+        return self._alternatives
 
     def neutral_values(self) -> dict[str, float]:
         return {f"{e.name}.{p.name}": p.neutral for e in self.effects for p in e.parameters}
@@ -189,7 +201,7 @@ class DrumModel:
     def _copy(self, **kw) -> "DrumModel":
         args = dict(params=self.params, effects=self.effects, values=self.values, covariance=self.covariance,
                     provenance=self.provenance, base=self.base, effect_files=self.effect_files,
-                    calibration=self.calibration)
+                    calibration=self.calibration, predictive=self.predictive, alternatives=self._alternatives)
         same_name = self.name == (self.params.name + "".join(" + " + e.name for e in self.effects))
         args.update(kw)
         return DrumModel(**args, name=None if same_name else self.name)

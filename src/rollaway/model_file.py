@@ -44,7 +44,7 @@ from rollaway.errors import UserError, read_toml, suggest
 from rollaway.covariance import BASELINE_FREE, Covariance
 from rollaway.parameters import PARAMETER_SETS, SPEC_BY_NAME, BrakeParameters, load_parameters, parameters_from_mapping
 
-TABLES = ("effects", "covariance", "provenance", "calibration")
+TABLES = ("effects", "covariance", "provenance", "calibration", "predictive")
 
 
 def read_model(source: str | Path | None = None) -> dict:
@@ -53,7 +53,7 @@ def read_model(source: str | Path | None = None) -> dict:
     ``name``, ``base``, ``effect_files``, ``calibration``."""
     if source is None or str(source) in PARAMETER_SETS:
         return dict(params=load_parameters(source), effects=(), values={}, covariance=None, provenance={},
-                    name=None, base=None, effect_files={}, calibration={})
+                    name=None, base=None, effect_files={}, calibration={}, predictive={})
     path = Path(str(source))
     if path.suffix != ".toml" and not path.exists():
         load_parameters(source)          # raises the "unknown parameter set" error with its hint
@@ -78,8 +78,10 @@ def model_parts(data: dict, where: str = "model", base_dir: Path | None = None) 
     covariance = _covariance(tables["covariance"], fitted, where) if "covariance" in tables else None
     provenance = _provenance(tables["provenance"], where) if "provenance" in tables else {}
     calibration = _calibration(tables["calibration"], where) if "calibration" in tables else {}
+    from rollaway.predictive import validate
+    predictive = validate(tables["predictive"], where, base_dir) if "predictive" in tables else {}
     return dict(params=params, effects=tuple(effects), values=values, covariance=covariance, provenance=provenance,
-                name=name, base=base, effect_files=files, calibration=calibration)
+                name=name, base=base, effect_files=files, calibration=calibration, predictive=predictive)
 
 
 def _calibration(table, where: str) -> dict:
@@ -240,6 +242,14 @@ def model_to_toml(model, comment: str = "") -> str:
     if model.provenance:
         lines += ["", "[provenance]"]
         lines += [f"{k} = {_value(v)}" for k, v in model.provenance.items()]
+    if getattr(model, "predictive", None):
+        lines += ["", "[predictive]", "# model error, tested range and competing effect sets (rollaway.predictive)"]
+        for k, v in model.predictive.items():
+            if k == "alternatives":
+                lines.append("alternatives = [" + ", ".join("{ weight = %s, file = %s }" % (
+                    _value(round(a["weight"], 4)), _value(Path(a["file"]).name)) for a in v) + "]")
+            else:
+                lines.append(f"{k} = {_value(v)}")
     if getattr(model, "calibration", None):
         lines += ["", "[calibration]", "# what the bench data determined, per brake parameter (rollaway.drum_parameters)"]
         lines += [f"{k} = {_value(v)}" for k, v in model.calibration.items()]
@@ -247,9 +257,17 @@ def model_to_toml(model, comment: str = "") -> str:
 
 
 def save_model(model, path: str | Path, comment: str = "") -> Path:
-    """Write :func:`model_to_toml` to *path* (its folder is created)."""
+    """Write :func:`model_to_toml` to *path* (its folder is created); competing effect sets
+    (``model.alternatives``) go beside it as ``NAME.altK.toml``."""
     from rollaway.errors import ensure_parent_dir
     p = ensure_parent_dir(path, "--save-model")
+    if getattr(model, "_alternatives", None):
+        alts = []
+        for k, (w, alt) in enumerate(model._alternatives, 1):
+            f = p.with_name(f"{p.stem}.alt{k}.toml")
+            f.write_text(model_to_toml(alt, f"Competing effect set {k} of {p.name} (weight {w:.3g})."), encoding="utf-8")
+            alts.append({"weight": float(w), "file": f.name})
+        model.predictive = {**model.predictive, "alternatives": alts}
     p.write_text(model_to_toml(model, comment), encoding="utf-8")
     return p
 

@@ -13,8 +13,8 @@ from dataclasses import dataclass
 
 import numpy as np
 
-from rollaway.errors import UserError
 from rollaway.drum_parameters import LEGACY_FREE
+from rollaway.errors import UserError
 from rollaway.model import DrumModel
 
 MAX_REJECTION_ROUNDS = 50
@@ -59,14 +59,33 @@ class Risk:
     slip_time_percentiles_s: dict[str, float | None]   # None: beyond the duration (holds)
     tyre_margin: float
     values: dict[str, np.ndarray]                  # the draws
-    least_margin: np.ndarray                       # per draw
-    slip_time_s: np.ndarray                        # per draw (NaN: holds)
+    least_margin: np.ndarray                       # per draw of the calibrated model (alongside .values)
+    slip_time_s: np.ndarray                        # per draw of the calibrated model (NaN: holds)
+    detail: dict | None = None                     # shares of the band, beyond-the-data flags, models drawn
+
+    @property
+    def flags(self) -> list[str]:
+        """Where the question lies beyond what the bench tested (the band was widened for it)."""
+        return list((self.detail or {}).get("flags", []))
+
+    @property
+    def shares(self) -> dict[str, float]:
+        """Each part's share of the band's variance: parameters, choice of effects, model error."""
+        return dict((self.detail or {}).get("shares", {}))
 
     def as_dict(self) -> dict:
         return {"draws": self.draws, "rollaway_probability": self.rollaway_probability,
                 "least_margin_percentiles": self.least_margin_percentiles,
                 "brake_margin_percentiles": self.brake_margin_percentiles,
-                "slip_time_percentiles_s": self.slip_time_percentiles_s, "tyre_margin": self.tyre_margin}
+                "slip_time_percentiles_s": self.slip_time_percentiles_s, "tyre_margin": self.tyre_margin,
+                **(self.detail or {})}
+
+    def band_words(self) -> str:
+        """One line: the band's parts and what lies beyond the data."""
+        sh = self.shares
+        parts = ", ".join(f"{k.replace('_', ' ')} {v:.0%}" for k, v in sh.items()) if sh else "no spread"
+        beyond = ("; BEYOND THE DATA: " + "; ".join(self.flags) + " (band widened)") if self.flags else ""
+        return f"band from {parts}{beyond}"
 
     def _repr_html_(self) -> str:  # notebooks
         from rollaway.display import result_html
@@ -84,25 +103,69 @@ class Risk:
         return {k: float(v[i]) for k, v in self.values.items()}
 
 
+def _least_margins(model: DrumModel, n: int, seed, force_N: float, sign: float, t_req_Nm: np.ndarray,
+                   initial_temp_C, duration_s: float):
+    """Parameter draws of *model* (none without a covariance) and each draw's least brake margin."""
+    from rollaway.hold import validate_hand_force
+    from rollaway.hold.numeric import MarginFunction, least_margin
+
+    vals = draw_values(model, n, seed) if model.covariance is not None else {}
+    mu = vals.get("mu_drum", np.full(n, model.params.mu_drum))
+    fn = MarginFunction(model, np.full(n, float(validate_hand_force(force_N))), np.full(n, float(sign)),
+                        t_req_Nm, mu, None, initial_temp_C, heat_transfer_W_m2K=vals.get("heat_transfer_W_m2K"),
+                        values={k: v for k, v in vals.items() if k not in LEGACY_FREE})
+    return vals, fn, least_margin(fn, duration_s)
+
+
+def _half_width(x: np.ndarray) -> float:
+    return 0.5 * float(np.percentile(x, 95) - np.percentile(x, 5)) if x.size else 0.0
+
+
 def rollaway_risk(model: DrumModel, *, hand_force_N: float, grade_pct: float, direction: str, occupants: int,
                   duration_s: float, initial_temp_C: float | None = None, draws: int = 1000,
                   seed: int | None = 0) -> Risk:
-    """Probability of a roll-away over [0, duration_s] and percentiles, from *draws* parameter draws."""
-    from rollaway.hold import _effective, required_torque, tyre_adhesion_margin, validate_hand_force
-    from rollaway.hold.numeric import MarginFunction, Subset, first_slip_time, least_margin
+    """Probability of a roll-away over [0, duration_s] and percentiles, from *draws* predictive draws.
 
-    vals = draw_values(model, draws, seed)
+    Each draw is one model (the calibrated one, or a competing effect set by its weight), one
+    parameter vector from that model's covariance and one model error ε (the torque times 1 + ε,
+    widened outside the tested range; :mod:`rollaway.predictive`).  The band's parts are reported
+    as shares of its variance: parameters, choice of effects, model error.
+    """
+    from rollaway.hold import _effective, required_torque, tyre_adhesion_margin
+    from rollaway.hold.numeric import Subset, first_slip_time
+    from rollaway.predictive import extrapolation, model_error_draws
+
+    if not (isinstance(draws, (int, np.integer)) and 1 <= draws <= 1_000_000):
+        raise UserError(f"--uncertainty {draws} must be a whole number of draws from 1 to 1000000, e.g. 1000")
+    pred = model.predictive
+    if model.covariance is None and not pred:
+        draw_values(model, draws, seed)          # the error that says how to get a covariance
     g, sign = _effective(grade_pct, direction)
     t_req = float(required_torque(model.params, g, occupants))
-    mu = vals.get("mu_drum", np.full(draws, model.params.mu_drum))
-    fn = MarginFunction(model, np.full(draws, float(validate_hand_force(hand_force_N))), np.full(draws, float(sign)),
-                        np.full(draws, t_req), mu, None, initial_temp_C, heat_transfer_W_m2K=vals.get(
-                            "heat_transfer_W_m2K"), values={k: v for k, v in vals.items() if k not in LEGACY_FREE})
-    brake = least_margin(fn, duration_s)
+    t0 = model.params.initial_drum_temp_C if initial_temp_C is None else float(initial_temp_C)
+    factor, flags = extrapolation(pred, hand_force_N=float(hand_force_N), direction=direction, initial_temp_C=t0,
+                                  duration_s=float(duration_s))
+    rng = np.random.default_rng(seed)
+    eps = model_error_draws(pred, draws, factor, rng)
+    parts = [(1.0 - sum(w for w, _ in model.alternatives), model)] + list(model.alternatives)
+    counts = np.floor(np.array([w for w, _ in parts]) * draws).astype(int)
+    counts[0] += draws - counts.sum()
+    brake = np.empty(draws)
+    owner = np.repeat(np.arange(len(parts)), counts)
     t_slip = np.full(draws, np.nan)
-    slips = np.flatnonzero(brake < 1.0)          # only draws whose brake gives way have a slip time
-    if slips.size:
-        t_slip[slips] = first_slip_time(Subset(fn, slips), duration_s)
+    vals0 = {}
+    for k, ((_, m), c) in enumerate(zip(parts, counts)):
+        if c == 0:
+            continue
+        idx = np.flatnonzero(owner == k)
+        vals, fn, least = _least_margins(m, int(c), None if seed is None else seed + k, hand_force_N, sign,
+                                         t_req / (1.0 + eps[idx]), initial_temp_C, duration_s)
+        brake[idx] = least
+        if k == 0:
+            vals0 = vals
+        slips = np.flatnonzero(least < 1.0)      # only draws whose brake gives way have a slip time
+        if slips.size:
+            t_slip[idx[slips]] = first_slip_time(Subset(fn, slips), duration_s)
     tyre = float(tyre_adhesion_margin(model.params, grade_pct, direction, occupants))
     least = np.minimum(brake, tyre)
     t_roll = np.where(tyre < 1.0, 0.0, t_slip)
@@ -112,4 +175,16 @@ def rollaway_risk(model: DrumModel, *, hand_force_N: float, grade_pct: float, di
     tp = {f"p{q:g}": (lambda x: None if not np.isfinite(x) else float(x))(np.percentile(t_inf, q,
                                                                                       method="inverted_cdf"))
           for q in PERCENTILES}
-    return Risk(draws, float(np.mean(least < 1.0)), pct, pct_b, tp, tyre, vals, least, t_roll)
+    no_eps = brake / (1.0 + eps)                  # the margin scales with the torque: ε divides out exactly
+    v_par = float(np.var(no_eps[owner == 0])) if counts[0] > 1 else 0.0
+    v_mix, v_all = float(np.var(no_eps)), float(np.var(brake))
+    total = max(v_all, 1e-300)
+    shares = {"parameters": min(v_par / total, 1.0), "choice_of_effects": max(v_mix - v_par, 0.0) / total,
+              "model_error": max(v_all - v_mix, 0.0) / total} if v_all > 0 else {}
+    detail = {"shares": shares, "flags": flags, "extrapolation_factor": factor,
+              "model_error_rel_sd": float(pred.get("model_error_rel_sd", 0.0)) * factor,
+              "models": [{"name": m.name, "weight": float(w), "draws": int(c)} for (w, m), c in zip(parts, counts)],
+              "half_width": _half_width(least)}
+    main = owner == 0
+    return Risk(draws, float(np.mean(least < 1.0)), pct, pct_b, tp, tyre, vals0, least[main], t_roll[main],
+                detail)

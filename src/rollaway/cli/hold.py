@@ -90,10 +90,12 @@ def _summary_text(v, duration_s: float, model, risk) -> str:
     if risk is not None:
         lm, ts = risk.brake_margin_percentiles, risk.slip_time_percentiles_s
         fmt_t = lambda x: "holds" if x is None else f"{x:.0f} s"  # noqa: E731
-        lines.append(f"uncertainty ({risk.draws} draws from the fitted covariance): roll-away probability "
+        lines.append(f"uncertainty ({risk.draws} predictive draws): roll-away probability "
                      f"{risk.rollaway_probability:.3f}; least brake margin p5/p50/p95 {lm['p5']:.3f}/{lm['p50']:.3f}/"
                      f"{lm['p95']:.3f}; slip time p5/p50/p95 {fmt_t(ts['p5'])}/{fmt_t(ts['p50'])}/{fmt_t(ts['p95'])}")
-    lines.append(f"verdict: {'HOLDS' if v.holds else 'ROLLS AWAY'}" + ("" if v.holds else f" ({v.reason})"))
+        lines.append(f"  {risk.band_words()}")
+    beyond = f" — beyond the bench data: {'; '.join(risk.flags)}" if risk is not None and risk.flags else ""
+    lines.append(f"verdict: {'HOLDS' if v.holds else 'ROLLS AWAY'}" + ("" if v.holds else f" ({v.reason})") + beyond)
     return "\n".join(lines)
 
 

@@ -223,13 +223,11 @@ def recheck(drum: DrumCalibration, data: Measurements, fit: FitResult, effects: 
 
 
 def _scaled_jacobian(fit: FitResult, jac: np.ndarray, names: list[str]) -> np.ndarray:
-    """Jacobian with columns per assumed spread and each channel's rows per √(variance factor)."""
-    n = len(fit.data)
-    phi_t = max(fit.variance_factor.get("temperature", 1.0), 1e-300)
-    phi_q = max(fit.variance_factor.get("torque", 1.0), 1e-300)
-    rows = np.concatenate([np.full(n, phi_t ** -0.5), np.full(n, phi_q ** -0.5)])
+    """Jacobian (rows already per noise σ) with columns per assumed spread.  The rows are not rescaled
+    by the fit's variance factor: a model still missing an effect fits worse, but the noise — what
+    the identifiability is measured against — is the model-free estimate."""
     spread = np.array([_spread(fit, m) for m in names])
-    return jac * rows[:, None] * spread[None, :]
+    return jac * spread[None, :]
 
 
 def _spread(fit: FitResult, name: str) -> float:

@@ -39,6 +39,9 @@ def calibrated_model(fit, data_path: str | Path | None = None, command: str = "f
 
     model = fit.model.drum_model(fit.values, covariance=fit_covariance(fit))
     model.calibration = dict(fit.fit_info.get("calibration", {}))
+    model.predictive = dict(fit.fit_info.get("predictive", {}))
+    alts = fit.fit_info.get("alternatives") or []
+    model._alternatives = [(w, calibrated_model(f)) for w, f in alts]
     if data_path is not None:
         model.provenance = provenance_for(data_path, rows=len(fit.data), tests=fit.data.n_tests, command=command,
                                           rmse={"rmse_torque_Nm": fit.rmse_torque_Nm, "rmse_temp_C": fit.rmse_temp_C})

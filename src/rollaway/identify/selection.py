@@ -18,6 +18,7 @@ from rollaway.identify.residuals import structure_tests
 
 BIC_THRESHOLD = -10.0        # "very strong" evidence (Kass & Raftery 1995)
 CV_TOP = 3                   # cross-validate at most this many candidates per step
+REFIT_TOP = 4                # screened candidates refitted with the brake parameters free, per step
 LOO_TESTS = 10               # K-fold by test: leave-one-test-out up to 10 tests, else FOLDS folds
 FOLDS = 5
 
@@ -115,24 +116,32 @@ def cv_score(data: Measurements, effects, params, start: FitResult) -> np.ndarra
     if start.jacobian is None or not start.names:
         return _cv_refit(data, effects, params, start)
     d = start.data
-    pred = start.prediction
+    loo = loto_residuals(start)
+    return np.bincount(np.concatenate([d.test_index, d.test_index]), loo * loo, d.n_tests)
+
+
+def loto_residuals(fit: FitResult) -> np.ndarray:
+    """Standardised residuals (model − measured)/σ, [temperature | torque], of every sample as
+    predicted with its own test (its fold) left out of the calibration: the linearised
+    leave-one-test-out of :func:`cv_score`.  Without a Jacobian: the fit's own residuals."""
+    d = fit.data
+    pred = fit.prediction
     r = np.concatenate([(pred.drum_temp_C - d.drum_temp_C) / d.temp_sigma_C,
                         (pred.torque_Nm - d.torque_Nm) / d.torque_sigma_Nm])
-    j = np.where(np.isfinite(start.jacobian), start.jacobian, 0.0)
-    colscale = np.sqrt(np.maximum((j * j).sum(axis=0), 1e-300))
-    j = j / colscale
+    if fit.jacobian is None or not fit.names:
+        return r
+    j = np.where(np.isfinite(fit.jacobian), fit.jacobian, 0.0)
+    j = j / np.sqrt(np.maximum((j * j).sum(axis=0), 1e-300))
     rows_test = np.concatenate([d.test_index, d.test_index])
     a = j.T @ j
-    scores = np.zeros(d.n_tests)
+    out = r.copy()
     for held in folds(d.n_tests):
         g = np.isin(rows_test, held)
         jg, rg = j[g], r[g]
         m = a - jg.T @ jg
         m += 1e-10 * np.trace(m) / max(len(m), 1) * np.eye(len(m))
-        loo = rg + jg @ np.linalg.lstsq(m, jg.T @ rg, rcond=1e-12)[0]
-        scores[np.asarray(held)] = np.bincount(rows_test[g], loo * loo, d.n_tests)[np.asarray(held)] \
-            if len(held) else 0.0
-    return scores
+        out[g] = rg + jg @ np.linalg.lstsq(m, jg.T @ rg, rcond=1e-12)[0]
+    return out
 
 
 def _cv_refit(data: Measurements, effects, params, start: FitResult) -> np.ndarray:
@@ -157,7 +166,7 @@ def _cv_refit(data: Measurements, effects, params, start: FitResult) -> np.ndarr
 
 # -- the steps ---------------------------------------------------------------------------
 def forward_step(data, params, names, current: FitResult, chosen: list[str], step: int,
-                 per_test_ok: bool = True, screen: bool = False):
+                 per_test_ok: bool = True, screen: bool = True):
     """Fit every remaining candidate on top of *current*; cross-validate the strong ones.  Effects
     with per-test parameters are tried only when *per_test_ok* (:func:`per_test_signature`).
     *screen*: fit the candidates with the brake parameters held, then refit the best few jointly
@@ -178,8 +187,8 @@ def forward_step(data, params, names, current: FitResult, chosen: list[str], ste
         cands.append(Candidate(name, fit, fit.bic + k * np.log(2 * len(data)) * (h is not params) - current.bic,
                                fit.aic + 2 * k * (h is not params) - current.aic, step=step))
     cands.sort(key=lambda c: c.delta_bic)
-    for c in cands[:CV_TOP]:                           # the best few refitted with the brake parameters free
-        if c.delta_bic < BIC_THRESHOLD or held is params:
+    for c in cands[:REFIT_TOP]:                        # the best few refitted with the brake parameters free
+        if held is not params:
             c.fit = calibrate(data, chosen + [c.effect], params, start=c.fit.values)
             c.delta_bic, c.delta_aic = c.fit.bic - current.bic, c.fit.aic - current.aic
     cands.sort(key=lambda c: c.delta_bic)
@@ -207,19 +216,22 @@ def _held_plan(params, current: FitResult):
     return DrumPlan(apply(params.params, {n: current.values[n] for n in free}), ()), len(free)
 
 
-def exchange(data, params, names, chosen, current, struct, nq, nt, rounds: int = 2):
+def exchange(data, params, names, chosen, current, struct, nq, nt, rounds: int = 1):
     """Stepwise exchange: replace a selected effect by an unselected one while BIC improves and the
     residual stays as clean (forward selection can pick an effect that absorbs part of a later one)."""
     swaps = []
     for _ in range(rounds):
         best = None
+        held, n_held = _held_plan(params, current)       # trials with the brake parameters held (cheap)
+        penalty = n_held * np.log(2 * len(data))
+        per_test_ok = per_test_signature(current, nq)
         for i, old in enumerate(chosen):
             for new in names:
-                if new in chosen:
+                if new in chosen or (has_per_test(new) and not per_test_ok):
                     continue
                 trial = chosen[:i] + [new] + chosen[i + 1:]
-                fit = calibrate(data, trial, params, start=current.values, statistics=False)
-                if fit.bic < current.bic - 2.0 and (best is None or fit.bic < best[2].bic):
+                fit = calibrate(data, trial, held, start=current.values, statistics=False)
+                if fit.bic + penalty < current.bic - 2.0 and (best is None or fit.bic < best[2].bic):
                     best = (i, new, fit)
         if best is None:
             break
