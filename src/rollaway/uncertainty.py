@@ -34,17 +34,25 @@ def draw_values(model: DrumModel, n: int, seed: int | None = 0) -> dict[str, np.
     lo = np.array([model.bounds(k)[0] for k in c.names])
     hi = np.array([model.bounds(k)[1] for k in c.names])
     rng = np.random.default_rng(seed)
+    sd = np.sqrt(np.clip(np.diag(c.matrix), 0.0, None))
+    corr = c.matrix / np.outer(np.where(sd > 0, sd, 1.0), np.where(sd > 0, sd, 1.0))
+    w, v = np.linalg.eigh(0.5 * (corr + corr.T))     # factor the correlation: variances of 1e-17 and 1e3 in one
+    root = v * np.sqrt(np.clip(w, 0.0, None))        # matrix would lose the small ones to rounding
+
+    def normal(size):
+        return mean + (rng.standard_normal((size, len(mean))) @ root.T) * sd
+
     out = np.empty((n, len(mean)))
     todo = np.arange(n)
     for _ in range(MAX_REJECTION_ROUNDS):
-        x = rng.multivariate_normal(mean, c.matrix, size=todo.size, method="eigh")
+        x = normal(todo.size)
         ok = np.all((x >= lo) & (x <= hi), axis=1)
         out[todo[ok]] = x[ok]
         todo = todo[~ok]
         if todo.size == 0:
             break
     if todo.size:                      # the mean sits at a bound: clip the rest
-        out[todo] = np.clip(rng.multivariate_normal(mean, c.matrix, size=todo.size, method="eigh"), lo, hi)
+        out[todo] = np.clip(normal(todo.size), lo, hi)
     return {k: out[:, i] for i, k in enumerate(c.names)}
 
 

@@ -276,10 +276,10 @@ def predictive_covariance(fit: FitResult, priors: dict[str, float]) -> Covarianc
     prior = np.array([1.0 / priors[m] ** 2 if m in priors else 0.0 for m in names])
     info = info + np.diag(prior)
     scale = np.sqrt(np.maximum(np.diag(info), 1e-300))
-    cov = np.linalg.pinv(info / np.outer(scale, scale), rcond=1e-12) / np.outer(scale, scale)
-    cov = 0.5 * (cov + cov.T)
-    w, v = np.linalg.eigh(cov)
-    cov = (v * np.clip(w, 0.0, None)) @ v.T
+    scaled = np.linalg.pinv(info / np.outer(scale, scale), rcond=1e-12)     # in scaled units: all of order one
+    scaled = 0.5 * (scaled + scaled.T)
+    w, v = np.linalg.eigh(scaled)
+    cov = ((v * np.clip(w, 0.0, None)) @ v.T) / np.outer(scale, scale)       # PSD, then back to the units
     keep = [i for i, m in enumerate(names) if np.isfinite(cov[i, i]) and cov[i, i] > 0]
     if not keep:
         return None
