@@ -49,8 +49,8 @@ def hold(model="paper", *, grade_pct: float, hand_force_N: float, direction: str
         Road grade [%] (rise over run; 20 is a 20 % grade).  Negative flips the facing.
     hand_force_N : float
         Force on the hand lever [N] (FMVSS 135 and UN R13-H use 400 N).
-    direction : {"downhill", "uphill"}
-        Which way the car faces.
+    direction : str
+        Which way the car faces: ``"downhill"`` or ``"uphill"``.
     occupants : int, default 0
         Number of 70 kg occupants, 0–5.
     duration_s : float, default 300
@@ -126,7 +126,7 @@ def simulate(scenario=None, *, model=None, render=None, mode: str = "fast", rend
         The drum model (replaces the scenario's ``params``); default: the scenario's, else the paper set.
     render : str or path-like, optional
         Also write a video or picture of the run: ``FILE.mp4``, ``FILE.gif`` or ``FILE.png``.
-    mode : {"fast", "fixed"}, default "fast"
+    mode : str, default "fast"
         ``fast`` skips ahead while the car is provably at rest; ``fixed`` steps at 1 ms throughout.
     render_options : dict, optional
         ``size`` (width, height) [px], ``fps``, ``after_s`` [s], ``multisample``.

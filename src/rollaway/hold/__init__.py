@@ -12,7 +12,8 @@ The names below are re-exported so ``from rollaway.hold import required_torque``
 package is also callable: ``rollaway.hold(model, grade_pct=20, ...)`` is :func:`rollaway.api.hold`.
 """
 from rollaway.callable_module import make_callable
-from rollaway.hold.closed_form import (MAX_HAND_FORCE_N, MAX_OCCUPANTS, NUMERIC_HORIZON_S, Model, _effective,
+from rollaway.hold.closed_form import (MAX_HAND_FORCE_N, MAX_OCCUPANTS, NUMERIC_HORIZON_S, Model,  # noqa: F401
+                                       _effective,  # (private, used by rollaway.uncertainty)
                                        effective_slope, hold_margin, invalid_grade, invalid_hand_force,
                                        invalid_occupants, min_brake_margin, minimum_hand_force_N, required_torque,
                                        self_locking, time_to_slip_s, total_mass_kg, tyre_adhesion_margin,

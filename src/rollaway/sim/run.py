@@ -72,7 +72,33 @@ CLEAR_SLIP = 0.1                 # slip ratio within 0.1 of 0 or 1 (full and lat
 
 @dataclass(frozen=True)
 class SimResult:
-    """Verdict of one simulated scenario (see :mod:`rollaway.sim.outcome` for the criteria)."""
+    """Verdict of one simulated scenario (see :mod:`rollaway.sim.outcome` for the criteria).
+
+    Attributes
+    ----------
+    outcome : str
+        ``held``, ``brake_slip`` (the wheels turn), ``tyre_skid`` (a rear tyre slides) or ``diverged``.
+    rollaway_time_s : float or None
+        When the car had moved more than 5 cm along the slope [s]; None if held.
+    max_displacement_m : float
+        Largest travel along the slope over the run [m].
+    min_margin : float
+        Least rear-drum capacity / demand T_req (eq. 23) over the run [–].
+    demand_Nm : float
+        T_req at the rear axle [N·m].
+    analytic_time_to_slip_s : float or None
+        The analytic check's brake slip time [s] (:func:`rollaway.hold`), None if it holds.
+    tyre_adhesion_margin : float
+        Analytic μ_r·N_r / (m g sin θ) [–].
+    drum_temp_C_end : float
+        Drum temperature at the end [°C].
+    status : str
+        ``ok``, ``rolling_at_end``, ``held_at_limit`` or ``diverged`` (docs: the simulator).
+    wall_time_s : float
+        Wall time of building and simulating [s] (not rendering).
+    trace : Trace
+        The recorded run: ``time_s``, ``displacement_m``, ``speed_m_s``, ``capacity_Nm`` (per rear wheel), ...
+    """
 
     scenario: str
     mode: str
