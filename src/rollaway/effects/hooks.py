@@ -13,7 +13,10 @@ from rollaway.errors import UserError
 
 
 def call_hook(effect: Effect, hook: str, state: ModelState, x, v: dict, scalar_ok: bool = False):
-    """Call one effect hook as untrusted code: an exception, a wrong shape or a non-finite value is a UserError."""
+    """Call one effect hook as untrusted code: an exception, a wrong shape or a non-finite value is a UserError.
+    A hook the effect does not override passes *x* through untouched (and unchecked)."""
+    if hook not in _overridden(type(effect)):
+        return x
     try:
         out = getattr(effect, hook)(state, x, v)
     except (UserError, KeyboardInterrupt):
@@ -39,6 +42,16 @@ def call_hook(effect: Effect, hook: str, state: ModelState, x, v: dict, scalar_o
         raise UserError(f"{effect_label(effect)}: hook '{hook}' returned NaN or inf; return finite values (check the "
                         f"effect's formula and its parameter bounds)")
     return out
+
+
+_OVERRIDDEN: dict[type, frozenset] = {}
+
+
+def _overridden(cls) -> frozenset:
+    hooks = _OVERRIDDEN.get(cls)
+    if hooks is None:
+        hooks = _OVERRIDDEN[cls] = frozenset(cls.overridden_hooks())
+    return hooks
 
 
 def effect_label(effect: Effect) -> str:
