@@ -29,6 +29,9 @@ def diagnose(
                                         "u6_slope_m_per_N, u6_offset_m, shoe_arm_ratio, heat_transfer_W_m2K, "
                                         "ambient_temp_C"),
     fix: List[str] = typer.Option([], "--fix", metavar="NAME", help="brake parameter to hold at its value (repeat)"),
+    check_calibration: int = typer.Option(0, "--check-calibration", min=0, metavar="N",
+                                          help="refit N synthetic campaigns of your test design and print how often "
+                                               "the 5-95 % band holds the truth (about 2 s each)"),
 ) -> None:
     """Calibrate your drum (the brake parameters these data identify, each test's T_0), then select
     catalogue effects forward (BIC and leave-one-test-out prediction) for what it leaves, and say which
@@ -43,6 +46,9 @@ def diagnose(
     diag = run(load_data(data), params=params, noise_torque_Nm=noise_torque_Nm or None,
                noise_temp_C=noise_temp_C or None, free=free or None, fix=fix)
     write_outputs(diag, report=report, json_out=json_out, fmt=fmt)
+    if check_calibration:
+        from rollaway.identify.calibration_check import check_calibration as check, words
+        typer.echo(words(check(diag, check_calibration)), err=fmt == "json")
     if save_model:
         typer.echo(f"model: {diag.save_model(save_model)} (your drum + the verdict's effects; use it with "
                    f"--params)", err=fmt == "json")

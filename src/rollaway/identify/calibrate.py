@@ -167,7 +167,8 @@ def _noise_weights(data: Measurements, model: BenchModel, values: dict) -> tuple
 
 @single_blas_thread
 def calibrate(data: Measurements, effects=(), params=None, *, free=None, start: dict | None = None,
-              model: BenchModel | None = None, per_test: bool = True, statistics: bool = True) -> FitResult:
+              model: BenchModel | None = None, per_test: bool = True, statistics: bool = True,
+              max_iterations: int | None = None) -> FitResult:
     """Fit μ_d, h, every parameter of *effects* and each test's T_0 to *data* (both channels jointly).
 
     *free* restricts the fitted global names (others stay at *start*/neutral); *start* gives
@@ -195,7 +196,8 @@ def calibrate(data: Measurements, effects=(), params=None, *, free=None, start: 
         values[INITIAL_TEMP] = None
     w_t, w_q = _noise_weights(data, model, values)
     prob = Problem(model, data, names, families, values, w_t, w_q)
-    sol = prob.solve(init, jacobian=statistics)
+    sol = prob.solve(init, jacobian=statistics, **({} if max_iterations is None else
+                                                    {"max_iterations": max_iterations}))
     return _result(model, data, sol, prob, names, families, statistics)
 
 

@@ -35,7 +35,7 @@ from rollaway.identify.selection import (BIC_THRESHOLD, Candidate, cv_score, eli
 from rollaway.jsonsafe import to_jsonable
 
 INDISTINGUISHABLE_BIC = 6.0  # candidates within this ΔBIC of the best cannot be told apart
-MAX_EFFECTS = 3              # forward selection stops after this many effects
+MAX_EFFECTS = 2              # forward selection stops after this many effects (a third rarely survives CV)
 PARTIAL_SHARE = 0.5          # "explains most of the baseline's excess error"
 
 

@@ -111,7 +111,8 @@ class Problem:
         r = r0 + np.einsum("ij,ij->i", gm, d[self.rows_test])
         return r, step, grads, normal
 
-    def solve(self, start: dict, tol: float = 1e-10, jacobian: bool = True) -> Solution:
+    def solve(self, start: dict, tol: float = 1e-10, jacobian: bool = True,
+              max_iterations: int = MAX_ITERATIONS) -> Solution:
         """Fit the globals (and per-test families); *jacobian*: also the projected Jacobian for errors.
 
         The globals are fitted by MINPACK's Levenberg–Marquardt (:func:`scipy.optimize.least_squares`,
@@ -142,7 +143,7 @@ class Problem:
 
             if names:
                 res = optimize.least_squares(fun, z, method="lm", xtol=tol, ftol=tol, gtol=tol,
-                                             max_nfev=MAX_ITERATIONS * (len(names) + 1))
+                                             max_nfev=max_iterations * (len(names) + 1))
                 z = res.x
                 vals.update(zip(names, to_x(z)))
             r_lin, step, _, _ = self.profile(vals)

@@ -18,6 +18,7 @@ from rollaway.identify.residuals import structure_tests
 
 BIC_THRESHOLD = -10.0        # "very strong" evidence (Kass & Raftery 1995)
 CV_TOP = 3                   # cross-validate at most this many candidates per step
+SCREEN_ITERATIONS = 6        # Levenberg–Marquardt iterations of a candidate's ranking fit
 REFIT_TOP = 3                # screened candidates refitted with the brake parameters free, per step
 LOO_TESTS = 10               # K-fold by test: leave-one-test-out up to 10 tests, else FOLDS folds
 FOLDS = 5
@@ -166,7 +167,7 @@ def _cv_refit(data: Measurements, effects, params, start: FitResult) -> np.ndarr
 
 # -- the steps ---------------------------------------------------------------------------
 def forward_step(data, params, names, current: FitResult, chosen: list[str], step: int,
-                 per_test_ok: bool = True, screen: bool = True):
+                 per_test_ok: bool = True, screen: bool = False):
     """Fit every remaining candidate on top of *current*; cross-validate the strong ones.  Effects
     with per-test parameters are tried only when *per_test_ok* (:func:`per_test_signature`).
     *screen*: fit the candidates with the brake parameters held, then refit the best few jointly
@@ -181,6 +182,9 @@ def forward_step(data, params, names, current: FitResult, chosen: list[str], ste
             h, k = _held_plan(params, current)
             fit = calibrate(data, chosen + [name], h, start=start)
             fit = calibrate(data, chosen + [name], params, start=fit.values, statistics=True)
+        elif held is params:                            # a short joint fit ranks; the best few are finished below
+            h, k = held, 0
+            fit = calibrate(data, chosen + [name], params, start=start, max_iterations=SCREEN_ITERATIONS)
         else:
             h, k = held, n_held
             fit = calibrate(data, chosen + [name], held, start=start)     # screening: brake parameters held
@@ -188,7 +192,7 @@ def forward_step(data, params, names, current: FitResult, chosen: list[str], ste
                                fit.aic + 2 * k * (h is not params) - current.aic, step=step))
     cands.sort(key=lambda c: c.delta_bic)
     for c in cands[:REFIT_TOP]:                        # the best few refitted with the brake parameters free
-        if held is not params:
+        if held is not params or not has_per_test(c.effect):
             c.fit = calibrate(data, chosen + [c.effect], params, start=c.fit.values)
             c.delta_bic, c.delta_aic = c.fit.bic - current.bic, c.fit.aic - current.aic
     cands.sort(key=lambda c: c.delta_bic)
