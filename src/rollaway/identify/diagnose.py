@@ -272,7 +272,8 @@ def diagnose(data: Measurements, params=None, effects=None, *, noise_torque_Nm: 
     drum.update(refined)
     refined.covariance = predictive_covariance(refined, drum.fixed_priors())
     refined.fit_info["calibration"] = drum.record()
-    _predictive(data, refined, [base] + [c.fit for c in first_cands], len(selected), drum)
+    _predictive(data, refined, [base] + [c.fit for c in first_cands], len(selected), drum,
+                misfit=remaining or any(e["form"] != "exact" for e in selected))
     return Diagnosis(data, paper, base, nq, nt, first_cands, verdict, indist if verdict != "none" else [], refined,
                      remaining, struct, base_cv, ev, selected, steps, shape, drum)
 
@@ -302,16 +303,19 @@ def _partial(data, params, base: FitResult, refined: FitResult, chosen: list[str
     return None
 
 
-def _predictive(data, refined: FitResult, pool: list[FitResult], n_effects: int, drum: DrumCalibration) -> None:
+def _predictive(data, refined: FitResult, pool: list[FitResult], n_effects: int, drum: DrumCalibration,
+                misfit: bool = False) -> None:
     """Attach the predictive record (model error, tested range) and the competing effect sets with their
-    weights to *refined* (``fit_info``), for the saved model (:mod:`rollaway.identify.bands`)."""
+    weights to *refined* (``fit_info``), for the saved model (:mod:`rollaway.identify.bands`).  *misfit*:
+    the saved model's form is known to leave structure (a "partial" effect, or structure remaining):
+    its model error is widened by :data:`rollaway.identify.bands.MISFIT_INFLATION`."""
     from rollaway.identify.bands import COMPETING_BIC, alternatives, model_error, validity
     from rollaway.predictive import record
     comp = [f for f in pool if f is not refined and f.jacobian is not None and len(f.effects) <= 1
             and f.bic - refined.bic < COMPETING_BIC] if n_effects <= 1 else []
     mix = alternatives(refined, comp)
     val = validity(data)
-    refined.fit_info["predictive"] = record(model_error(refined), val)
+    refined.fit_info["predictive"] = record(model_error(refined, misfit), val)
     alts = []
     for w, f in mix:
         if f is refined:
