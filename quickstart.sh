@@ -22,8 +22,13 @@ rollaway diagnose examples/identify/bench-hidden-effect.csv --save-model out/cal
 head -1 out/diagnose.txt; tail -1 out/diagnose.txt
 rollaway hold --grade-pct 30 --hand-force-N 250 --occupants 5 --duration-s 3600 | tail -1 | sed 's/^/  paper model:      /' || true
 rollaway hold --grade-pct 30 --hand-force-N 250 --occupants 5 --duration-s 3600 --params out/calibrated.toml \
-  --uncertainty 1000 | tail -2 | sed 's/^/  calibrated model: /' || true
+  --uncertainty 1000 | tail -3 | sed 's/^/  calibrated model: /' || true
 rollaway chart --params paper --params out/calibrated.toml --out out/design-chart-calibrated.png
+echo; echo "== 7. your own brake: a drum that is not the paper's, tested facing downhill only"
+rollaway diagnose examples/identify/bench-own-drum-downhill.csv --save-model out/own-drum.toml > out/own-drum.txt
+head -1 out/own-drum.txt; sed -n '/^Your drum/,/^$/p' out/own-drum.txt | cut -c1-150
+rollaway hold --grade-pct 20 --hand-force-N 300 --occupants 1 --duration-s 3600 --direction uphill \
+  --params out/own-drum.toml --uncertainty 1000 | tail -3 || true
 echo
 echo "== done. What was written, and what to open:"
 echo "  renders/quickstart/hot-parking-rollaway.mp4   the car rolling away when the drum has cooled (open it)"
@@ -33,4 +38,5 @@ echo "  out/grade-load/plots/map-grade-*.png           hold / roll-away maps; re
 echo "  renders/paper/fig09..fig14*.png                the paper's Figures 9-14 redrawn"
 echo "  out/diagnose.html, out/calibrated.toml         the missing effect found in bench data; the calibrated model"
 echo "  out/design-chart-calibrated.png                least hand force: paper model vs calibrated model (open it)"
+echo "  out/own-drum.txt, out/own-drum.toml            your own brake: the identifiability report; its calibrated model"
 echo "  docs/model.md                                  the model, equation by equation"

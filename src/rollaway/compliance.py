@@ -102,6 +102,7 @@ def analytic_rows(preset_names, params, uncertainty: int | None = None) -> dict[
         "tyre_margin", "min_hand_force_N", "verdict", "reason")}
     if uncertainty is not None:
         cols["rollaway_probability"] = []
+        cols["beyond_bench_data"] = []
     for name in preset_names:
         pr = get_preset(name)
         for d in pr.directions:
@@ -117,9 +118,11 @@ def analytic_rows(preset_names, params, uncertainty: int | None = None) -> dict[
                 cols[k].append(val)
             if uncertainty is not None:
                 from rollaway.uncertainty import rollaway_risk
-                cols["rollaway_probability"].append(rollaway_risk(
-                    params, hand_force_N=pr.hand_force_N, grade_pct=pr.grade_pct, direction=d, occupants=pr.occupants,
-                    duration_s=pr.duration_s, initial_temp_C=pr.initial_temp_C, draws=uncertainty).rollaway_probability)
+                risk = rollaway_risk(params, hand_force_N=pr.hand_force_N, grade_pct=pr.grade_pct, direction=d,
+                                     occupants=pr.occupants, duration_s=pr.duration_s,
+                                     initial_temp_C=pr.initial_temp_C, draws=uncertainty)
+                cols["rollaway_probability"].append(risk.rollaway_probability)
+                cols["beyond_bench_data"].append("; ".join(risk.flags))
     return cols
 
 

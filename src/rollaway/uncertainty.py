@@ -196,3 +196,43 @@ def rollaway_risk(model: DrumModel, *, hand_force_N: float, grade_pct: float, di
     main = owner == 0
     return Risk(draws, float(np.mean(least < 1.0)), pct, pct_b, tp, tyre, vals0, least[main], t_roll[main],
                 detail)
+
+
+def least_force_band(model: DrumModel, grades_pct, direction: str, occupants: int, duration_s: float,
+                     initial_temp_C: float | None = None, draws: int = 100, seed: int | None = 0) -> dict:
+    """5/50/95 percentiles of the least hand force that holds [N] at each grade, over predictive draws
+    (parameters, competing effect sets, model error — as :func:`rollaway_risk`); NaN where the rear tyres
+    slide or no force holds."""
+    from rollaway.hold import _effective, required_torque, tyre_adhesion_margin
+    from rollaway.hold.numeric import MarginFunction, least_hand_force
+    from rollaway.predictive import extrapolation, model_error_draws
+
+    grades = np.atleast_1d(np.asarray(grades_pct, float))
+    rng = np.random.default_rng(seed)
+    t0 = model.params.initial_drum_temp_C if initial_temp_C is None else float(initial_temp_C)
+    factor, _ = extrapolation(model.predictive, hand_force_N=float(np.mean(model.predictive.get(
+        "tested_hand_force_N", [250.0, 250.0]))), direction=direction, initial_temp_C=t0, duration_s=duration_s)
+    parts = [(1.0 - sum(w for w, _ in model.alternatives), model)] + list(model.alternatives)
+    counts = np.floor(np.array([w for w, _ in parts]) * draws).astype(int)
+    counts[0] += draws - counts.sum()
+    forces = []
+    for k, ((_, m), c) in enumerate(zip(parts, counts)):
+        if c == 0:
+            continue
+        vals = draw_values(m, int(c), None if seed is None else seed + k) if m.covariance is not None else {}
+        eps = model_error_draws(model.predictive, int(c), factor, rng)
+        g, sign = _effective(grades, direction)
+        t_req = np.asarray(required_torque(m.params, g, occupants), float)
+        rep = lambda a: np.repeat(np.asarray(a, float)[:, None], grades.size, axis=1).ravel()  # noqa: E731
+        mu = rep(vals.get("mu_drum", np.full(c, m.params.mu_drum)))
+        h = rep(vals.get("heat_transfer_W_m2K", np.full(c, m.params.heat_transfer_W_m2K)))
+        fn = MarginFunction(m, np.zeros(c * grades.size), np.tile(np.broadcast_to(sign, grades.shape), c),
+                            (t_req[None, :] / (1.0 + eps[:, None])).ravel(), mu, None, t0, heat_transfer_W_m2K=h,
+                            values={n: rep(v) for n, v in vals.items() if n not in LEGACY_FREE})
+        forces.append(least_hand_force(fn, duration_s).reshape(c, grades.size))
+    f = np.concatenate(forces, axis=0)
+    f = np.where(np.isfinite(f), f, np.nan)
+    tyre = np.asarray(tyre_adhesion_margin(model.params, grades, direction, occupants), float)
+    with np.errstate(all="ignore"):
+        pct = {f"p{q:g}": np.where(tyre >= 1.0, np.nanpercentile(f, q, axis=0), np.nan) for q in PERCENTILES}
+    return pct

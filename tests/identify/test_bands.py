@@ -104,13 +104,13 @@ def test_questions_beyond_the_data_are_flagged_and_widened():
     cases = {"hand force": dict(hand_force_N=450.0, direction="downhill", duration_s=3600.0),
              "was not tested": dict(hand_force_N=250.0, direction="uphill", duration_s=3600.0),
              "longer than the bench": dict(hand_force_N=250.0, direction="downhill", duration_s=7200.0)}
-    width = lambda r: r.least_margin_percentiles["p95"] - r.least_margin_percentiles["p5"]  # noqa: E731
+    width = lambda r: r.brake_margin_percentiles["p95"] - r.brake_margin_percentiles["p5"]  # noqa: E731
     for words, q in cases.items():
         out = rollaway_risk(model, **q, **kw)
         assert any(words in f for f in out.flags), (words, out.flags)
         assert "BEYOND THE DATA" in out.band_words()
-        rel = width(out) / out.least_margin_percentiles["p50"]
-        assert rel > width(inside) / inside.least_margin_percentiles["p50"], words
+        rel = width(out) / out.brake_margin_percentiles["p50"]
+        assert rel > width(inside) / inside.brake_margin_percentiles["p50"], words
 
 
 def test_extrapolation_factor_grows_with_distance():

@@ -14,6 +14,9 @@ def chart(
     occupants: int = typer.Option(5, "--occupants", metavar="N", help="number of 70 kg occupants, 0–5"),
     duration_s: float = typer.Option(3600.0, "--duration-s", metavar="SECONDS", help="how long the car must hold"),
     t0_C: float = typer.Option(200.0, "--t0-C", metavar="CELSIUS", help="drum temperature when parked [°C]"),
+    uncertainty: int = typer.Option(0, "--uncertainty", min=0, max=10000, metavar="N",
+                                    help="shade each calibrated model's 5-95 % band of the least hand force from N "
+                                         "predictive draws (parameters, competing effects, model error)"),
 ) -> None:
     """Design chart: least hand force that holds, against grade, both facings, for each --params model."""
     from rollaway.errors import UserError
@@ -25,7 +28,8 @@ def chart(
     if not (0 < duration_s <= 7 * 86400):
         raise UserError(f"--duration-s {duration_s:g} must be in (0, 604800] seconds, e.g. 3600")
     models = {Path(p).stem if p.endswith(".toml") else p: load_model(p) for p in params}
-    path = design_chart(models, out, occupants=occupants, duration_s=duration_s, initial_temp_C=t0_C)
+    path = design_chart(models, out, occupants=occupants, duration_s=duration_s, initial_temp_C=t0_C,
+                        uncertainty=uncertainty)
     typer.echo(f"wrote {path}")
 
 

@@ -24,9 +24,12 @@ def radiative_convective_temperature_C(time_s, initial_temp_C, ambient_C, heat_t
     t, t0 = t.ravel(), t0.ravel()
     out = np.empty(t.size)
     keys = np.stack([amb.ravel(), h.ravel(), eps.ravel()], axis=1)
-    uniq, inverse = np.unique(keys, axis=0, return_inverse=True)
-    order = np.argsort(inverse.ravel(), kind="stable")
-    bounds = np.concatenate([[0], np.cumsum(np.bincount(inverse.ravel(), minlength=len(uniq)))])
+    if keys.size and np.all(keys == keys[0]):       # one (ambient, h, ε) for all samples: no sort needed
+        uniq, order, bounds = keys[:1], np.arange(t.size), np.array([0, t.size])
+    else:
+        uniq, inverse = np.unique(keys, axis=0, return_inverse=True)
+        order = np.argsort(inverse.ravel(), kind="stable")
+        bounds = np.concatenate([[0], np.cumsum(np.bincount(inverse.ravel(), minlength=len(uniq)))])
     for j, (ta, hj, ej) in enumerate(uniq):      # one table of G per (ambient, h, ε)
         sel = order[bounds[j]:bounds[j + 1]]
         top = max(float(np.max(t0[sel] - ta)), 1e-3) * 1.01

@@ -28,9 +28,13 @@ def least_force_curves(models: dict, *, occupants: int, duration_s: float, initi
     return out
 
 
+BAND_GRADES_PCT = np.linspace(1.0, 40.0, 14)
+
+
 def design_chart(models: dict, out: str | Path, *, occupants: int = 5, duration_s: float = 3600.0,
-                 initial_temp_C: float = 200.0) -> Path:
-    """Draw the chart to *out* (PNG); *models* maps a label to a parameter set or drum model."""
+                 initial_temp_C: float = 200.0, uncertainty: int = 0) -> Path:
+    """Draw the chart to *out* (PNG); *models* maps a label to a parameter set or drum model.
+    *uncertainty*: draws for a shaded 5–95 % band of each calibrated model's least hand force."""
     import matplotlib
     matplotlib.use("Agg")
     import matplotlib.pyplot as plt
@@ -42,6 +46,14 @@ def design_chart(models: dict, out: str | Path, *, occupants: int = 5, duration_
         for facing, ls in (("downhill", "-"), ("uphill", "--")):
             ax.plot(GRADES_PCT, curves[(label, facing)], ls, color=colours[i % len(colours)], lw=2,
                     label=f"{label}, facing {facing}")
+            model = models[label]
+            if uncertainty and (getattr(model, "covariance", None) is not None or getattr(model, "predictive", None)):
+                from rollaway.uncertainty import least_force_band
+                band = least_force_band(model, BAND_GRADES_PCT, facing, occupants, duration_s, initial_temp_C,
+                                        draws=uncertainty)
+                ax.fill_between(BAND_GRADES_PCT, band["p5"], band["p95"], color=colours[i % len(colours)],
+                                alpha=0.18 if facing == "downhill" else 0.10, lw=0,
+                                label=f"{label}, facing {facing}: 5–95 % band")
     ax.axhline(REGULATION_FORCE_N, color="0.3", lw=1)
     ax.text(GRADES_PCT[0], REGULATION_FORCE_N * 1.02, "400 N hand-control limit", fontsize=10, color="0.3")
     ax.axvline(REGULATION_GRADE_PCT, color="0.3", lw=1, ls=":")

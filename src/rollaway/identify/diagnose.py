@@ -210,9 +210,8 @@ def diagnose(data: Measurements, params=None, effects=None, *, noise_torque_Nm: 
                   f"{cur_cv:.1f} → {best.cv_score:.1f} (better in {best.cv_better_tests} of {data.n_tests} tests).  "
                   f"Expected signature: {get_effect(best.effect).signature}.")
         current = best.fit
-        fits.append(current)
-        if not struct["structured"]:
-            break
+        fits.append(current)      # a clean residual does not stop the search: a second effect the calibrated
+                                  # drum partly absorbed must still pass ΔBIC < −10 and the held-out test
     if len(chosen) >= 2:
         chosen, current, struct, swaps = exchange(data, params, names, chosen, current, struct, nq, nt)
         chosen, current, struct, removed = eliminate(data, params, chosen, current, struct, nq, nt)

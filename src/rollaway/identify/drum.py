@@ -13,7 +13,9 @@ decides which of them these data determine:
    below :data:`MIN_SINGULAR_VALUE` (the data pin that combination down less than a third of
    the assumed spread), the parameter that loads most on it (ties broken by
    :data:`FIX_FIRST`) is fixed at its assumed value and reported as *confounded with* the
-   others that load on the same direction; then the fit is repeated.
+   others that load on the same direction; then the fit is repeated;
+3. what is left is pruned by BIC (backward elimination): a parameter whose freeing does not lower
+   BIC — the data agree with its assumed value — is held there ("not needed"); μ_d always stays.
 
 ``free=`` and ``fix=`` override the choice.  Fixed and untested parameters keep their doubt:
 :func:`predictive_covariance` adds their assumed spread as a Gaussian prior to the fit's
@@ -189,11 +191,37 @@ def calibrate_drum(data: Measurements, params=None, *, free=None, fix=(), start:
                              f"{min_singular_value:g}){others}", confounded)
         candidates.remove(drop)
         vals.pop(drop, None)
+    if not free and fit.jacobian is not None:
+        fit, vals = _prune(data, p, candidates, fit, vals, fixed)
     for n in candidates:
         est = fit.estimates[n]
         entries[n] = ParameterStatus(n, "fitted", est.value, assumed[n], est.unit, est.stderr, tuple(est.ci95))
     ordered = {n: entries[n] for n in BASELINE_FREE}
     return DrumCalibration(p, ordered, fit, [float(x) for x in sv], selection)
+
+
+def _prune(data, p, candidates: list[str], fit: FitResult, vals: dict, fixed):
+    """Backward elimination by BIC: a brake parameter whose freeing does not lower BIC is held at its assumed
+    value (the data agree with it); the torque scale is always fitted.  *candidates* is pruned in place."""
+    while len(candidates) > 1:
+        trials = []
+        for n in candidates:
+            if n == "mu_drum":
+                continue
+            rest = tuple(c for c in candidates if c != n)
+            start = {k: v for k, v in vals.items() if k != n}
+            trials.append((calibrate(data, (), DrumPlan(p, rest), start=start), n))
+        if not trials:
+            break
+        best, name = min(trials, key=lambda t: t[0].bic)
+        gain = best.bic - fit.bic
+        if gain > 0.0:
+            break
+        fixed(name, "fixed", f"not needed: the data agree with the assumed value (freeing it would change BIC by "
+                             f"{-gain:+.1f})")
+        candidates.remove(name)
+        fit, vals = best, {k: v for k, v in best.values.items()}
+    return fit, vals
 
 
 def recheck(drum: DrumCalibration, data: Measurements, fit: FitResult, effects: list) -> FitResult:

@@ -81,18 +81,22 @@ def in_band(brake_margin, tyre_margin, band) -> np.ndarray:
 
 
 def with_rollaway_probability(table: pd.DataFrame, base: Scenario, draws: int, seed: int = 0) -> pd.DataFrame:
-    """Add ``rollaway_probability`` per valid point: *draws* from the base model's covariance (one loop per point)."""
+    """Add ``rollaway_probability`` per valid point (*draws* predictive draws of the base model, one loop per
+    point) and ``beyond_bench_data``: where the point lies outside what the bench tested."""
     from rollaway.uncertainty import rollaway_risk
     out = table.copy()
     prob = np.full(len(out), np.nan)
+    beyond = np.full(len(out), "", dtype=object)
     for i in np.flatnonzero((out["error"] == "").to_numpy()):
         r = out.iloc[i]
         s = base.replace(mu_drum=float(r["mu_drum"]), initial_drum_temp_C=float(r["initial_drum_temp_C"]),
                          tyre_road_mu=float(r["tyre_road_mu"]))
-        prob[i] = rollaway_risk(s.model, hand_force_N=float(r["hand_force_N"]), grade_pct=float(r["grade_pct"]),
-                                direction=str(r["direction"]), occupants=int(r["occupants"]),
-                                duration_s=float(r["duration_s"]), draws=draws, seed=seed).rollaway_probability
+        risk = rollaway_risk(s.model, hand_force_N=float(r["hand_force_N"]), grade_pct=float(r["grade_pct"]),
+                             direction=str(r["direction"]), occupants=int(r["occupants"]),
+                             duration_s=float(r["duration_s"]), draws=draws, seed=seed)
+        prob[i], beyond[i] = risk.rollaway_probability, "; ".join(risk.flags)
     out["rollaway_probability"] = prob
+    out["beyond_bench_data"] = beyond.astype(str)
     return out
 
 

@@ -125,5 +125,5 @@ def build_table(analytic: pd.DataFrame, records: dict[str, dict], analytic_wall_
     df["wall_time_s"] = wall
     for col in ("sim_outcome", "disagreement", "error"):
         df[col] = df[col].astype(str)
-    extra = [c for c in ("rollaway_probability",) if c in df.columns]   # with --uncertainty
+    extra = [c for c in ("rollaway_probability", "beyond_bench_data") if c in df.columns]   # with --uncertainty
     return df[list(COLUMNS) + extra]
