@@ -26,7 +26,7 @@ from rollaway.effects import available_effects, get_effect
 from rollaway.identify.calibrate import FitResult, calibrate, evaluate
 from rollaway.identify.fitting import single_blas_thread
 from rollaway.identify.measurements import Measurements
-from rollaway.identify.noise import Noise, noise_estimate
+from rollaway.identify.noise import Noise, noise_estimate, sample_sigma
 from rollaway.identify.residuals import association, trend_words
 from rollaway.identify.selection import (BIC_THRESHOLD, Candidate, weighted_chi2, cv_score, eliminate, exchange, folds,
                                          forward_step, structure)
@@ -144,8 +144,8 @@ def diagnose(data: Measurements, params=None, effects=None, *, noise_torque_Nm: 
     data = data.subset(np.ones(len(data), bool))          # a copy that carries the noise model
     first = calibrate(data, (), params)
     nq, nt = channel_noise(data, first, noise_torque_Nm, noise_temp_C)
-    data.torque_sigma_Nm = np.maximum(nq.at(data.torque_Nm), 1e-9)
-    data.temp_sigma_C = np.maximum(nt.at(data.drum_temp_C), 1e-9)
+    data.torque_sigma_Nm = np.maximum(sample_sigma(nq, data, data.torque_Nm), 1e-9)
+    data.temp_sigma_C = np.maximum(sample_sigma(nt, data, data.drum_temp_C), 1e-9)
     paper = evaluate(data, (), params)
     base = calibrate(data, (), params, start=first.values)
     base_struct = structure(base, nq, nt)
