@@ -84,7 +84,8 @@ class Comparison:
                 "model": {"name": self.model_name, "calibrated": self.fit.k > 0, "effects": self.fit.effects,
                           "values": self.fit.values},
                 "noise": {k: v.sigma for k, v in self.noise.items()}, "overall": self.overall,
-                "tests": self.per_test, "excursions": self.excursions, "findings": self.words}
+                "tests": self.per_test, "excursions": self.excursions, "findings": self.words,
+                "data": {"source": self.fit.data.source, "tests": self.fit.data.n_tests, **self.fit.data.rows_info()}}
 
     def table(self) -> str:
         head = (f"{'test':<10}{'dir':<9}{'F_hb N':>7}{'T0 °C':>7} | {'torque RMSE':>11}{'bias':>8}{'worst':>8}"

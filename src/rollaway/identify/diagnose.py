@@ -60,7 +60,8 @@ class Diagnosis:
         def rm(f):
             return {"rmse_torque_Nm": f.rmse_torque_Nm, "rmse_temp_C": f.rmse_temp_C, "bic": f.bic, "aic": f.aic,
                     "parameters": {k: e.as_dict() for k, e in f.estimates.items()}, **f.statistics()}
-        return {"data": {"source": self.data.source, "samples": len(self.data), "tests": self.data.n_tests},
+        return {"data": {"source": self.data.source, "samples": len(self.data), "tests": self.data.n_tests,
+                         **self.data.rows_info()},
                 "noise": {"torque_Nm": self.noise_torque.sigma, "temp_C": self.noise_temp.sigma,
                           "torque": self.noise_torque.as_dict(), "temperature": self.noise_temp.as_dict()},
                 "paper": {"rmse_torque_Nm": self.paper.rmse_torque_Nm, "rmse_temp_C": self.paper.rmse_temp_C},

@@ -79,6 +79,13 @@ class Measurements:
                         "duration_s": float(self.time_s[rows].max())})
         return out
 
+    def rows_info(self) -> dict:
+        """Rows read from the log, kept, and seen by the fits (after a reduction), for reports and JSON."""
+        red = self.reduction
+        if red is None:
+            return {"rows_read": len(self), "rows_kept": len(self), "rows": len(self), "window_s": None}
+        return {"rows_read": red.rows_read, "rows_kept": red.rows_kept, "rows": len(self), "window_s": red.window_s}
+
     def subset(self, mask) -> "Measurements":
         """Rows where *mask* is true (whole tests keep their T_0)."""
         m = np.asarray(mask, bool)

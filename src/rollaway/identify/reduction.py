@@ -98,10 +98,10 @@ class _Test:
 class Reducer:
     """Validates and accumulates batches (:mod:`rollaway.identify.sources`); :meth:`finish` builds the data."""
 
-    def __init__(self, keep_raw: int = KEEP_RAW_ROWS):
+    def __init__(self, keep_raw: int | None = None):
         self.tests: dict[str, _Test] = {}
         self.rows = 0
-        self.keep_raw = keep_raw
+        self.keep_raw = KEEP_RAW_ROWS if keep_raw is None else keep_raw
         self.has_ambient: bool | None = None
 
     # -- one batch -------------------------------------------------------------------------

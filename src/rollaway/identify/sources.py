@@ -22,7 +22,7 @@ from pathlib import Path
 import numpy as np
 
 from rollaway.errors import UserError
-from rollaway.identify.columns import CANONICAL, TEXT, ColumnMap, Resolved, unit_label
+from rollaway.identify.columns import CANONICAL, TEXT, ColumnMap, Resolved, _find, unit_label
 
 SUFFIXES = {".csv": "csv", ".parquet": "parquet", ".pq": "parquet"}
 MANIFEST_NAMES = ("manifest.csv", "tests.csv")
@@ -96,7 +96,10 @@ def manifest_for(path: Path, manifest: str | None, colmap: ColumnMap) -> dict[st
     header, line, rows = _read_small_csv(m)
     cols = {}
     for q in ("test_id", "direction", "hand_force_N"):
-        r = colmap.resolve(header, q, f"{m}, line {line}")
+        # the map's column if the manifest has it, else the canonical name (a manifest is often written by hand)
+        spec = colmap.specs.get(q)
+        use = colmap if spec is not None and _find(header, spec.column) else ColumnMap()
+        r = use.resolve(header, q, f"{m}, line {line}")
         if r is None:
             raise UserError(f"{m}, line {line}, column '{q}': missing; a manifest has the columns "
                             f"test_id,direction,hand_force_N (one row per test file)")
@@ -156,8 +159,8 @@ def plan(path, colmap: ColumnMap | None = None, manifest: str | None = None) -> 
         files = sorted(f for f in p.iterdir() if f.is_file() and f.suffix.lower() in SUFFIXES
                        and f.name.lower() not in MANIFEST_NAMES and not f.name.startswith("."))
         if not files:
-            raise UserError(f"'{p}' holds no .csv or .parquet file; put one file per test there (named after the "
-                            f"test)")
+            raise UserError(f"'{p}' is a folder with no .csv or .parquet file; give a measurement CSV file, or a "
+                            f"folder with one CSV/Parquet file per test (named after the test)")
         if manifest and Path(manifest).resolve() in {f.resolve() for f in files}:
             files = [f for f in files if f.resolve() != Path(manifest).resolve()]
         per_test = True
@@ -174,7 +177,14 @@ def plan(path, colmap: ColumnMap | None = None, manifest: str | None = None) -> 
         kind = SUFFIXES[f.suffix.lower()]
         header, hline = read_header(f, kind)
         where = f"{f}, line {hline}" if kind == "csv" else str(f)
-        cols = {q: r for q in CANONICAL if (r := colmap.resolve(header, q, where)) is not None}
+        cols = {}
+        for q in CANONICAL:
+            spec = colmap.specs.get(q)
+            if (tests is not None and q in ("direction", "hand_force_N") and spec is not None
+                    and _find(header, spec.column) is None):
+                continue                          # the manifest gives it for this file
+            if (r := colmap.resolve(header, q, where)) is not None:
+                cols[q] = r
         constants = {}
         if per_test or "test_id" not in cols:
             constants["test_id"] = f.stem
@@ -328,7 +338,7 @@ def read_log(path, colmap: ColumnMap | None = None, manifest: str | None = None,
     (:mod:`rollaway.identify.reduction`; *window_s* None: automatic, 0: every sample a row)."""
     from rollaway.identify.reduction import Reducer
     plans = plan(path, colmap, manifest)
-    reducer = Reducer()
+    reducer = Reducer(keep_raw=2 ** 62 if window_s == 0 else None)
     notes = []
     for fp in plans:
         ignored = [h for h in fp.header if h not in {r.header for r in fp.columns.values()}]
