@@ -35,7 +35,8 @@ def columns_option():
     import typer
     return typer.Option([], "--columns", metavar="MAP",
                         help="where the quantities are and in which unit: NAME=COLUMN[unit] (e.g. "
-                             "'drum_temp_C=T_drum[degF]', repeatable) or a .toml file with a [columns] table")
+                             "'drum_temp_C=T_drum[degF]', repeatable) or a .toml file with a [columns] table "
+                             "(default: the folder's columns.toml, if any)")
 
 
 def manifest_option():
@@ -62,12 +63,17 @@ def load_data(path, columns=(), manifest=None, window_s=None):
     from rollaway.identify.columns import column_map, is_lab_format
     from rollaway.identify.measurements import load_measurements
     p = Path(path)
+    own = p / "columns.toml"
+    notes = []
+    if not columns and p.is_dir() and own.is_file():          # a folder that carries its own column map
+        columns = [own]
+        notes.append(f"column map {own}")
     colmap = column_map(columns)
     streaming = bool(colmap) or manifest or window_s is not None or is_lab_format(p) or \
         (p.is_file() and p.stat().st_size > SMALL_CSV_BYTES)
     if streaming:
         from rollaway.identify.sources import read_log
-        data = read_log(p, colmap, manifest, window_s)
+        data = read_log(p, colmap, manifest, window_s, notes)
     else:
         data = load_measurements(path)
     for note in data.notes:

@@ -87,8 +87,13 @@ def conversion(unit: str | None, quantity: str) -> tuple[float, float]:
     return float(one - zero), float(zero)
 
 
+PRETTY = {"N*m": "N·m", "kN*m": "kN·m", "lbf*ft": "lbf·ft", "ft*lbf": "lbf·ft", "degC": "°C", "degF": "°F"}
+
+
 def unit_label(unit: str | None, quantity: str) -> str:
-    return unit if unit else {"N": "N", "s": "s", "degC": "°C", "N*m": "N·m"}[QUANTITIES[quantity][0]]
+    """A unit as people write it ('Nm' → 'N·m'); None: the quantity's canonical unit."""
+    spelled = _pint_spelling(unit) if unit else QUANTITIES[quantity][0]
+    return PRETTY.get(spelled, spelled if not unit else unit)
 
 
 @dataclass(frozen=True)
@@ -132,9 +137,9 @@ class ColumnMap:
         if found is None:
             if spec is None:
                 return None
-            bare, _ = split_header(name)
+            bare = split_header(name)[0]
             pool = [split_header(h)[0] for h in header]
-            raise UserError(f"{where}, column '{name}': mapped to {quantity} by {self.origin} but the header has no "
+            raise UserError(f"{where}, column '{bare}': mapped to {quantity} by {self.origin} but the header has no "
                             f"such column{suggest(bare, pool)}; the header is {', '.join(repr(h) for h in header[:8])}"
                             f"{', ...' if len(header) > 8 else ''} — fix the name in {self.origin}")
         cell, header_unit = found
@@ -147,9 +152,12 @@ class ColumnMap:
             a, b = conversion(unit, quantity)
         except ValueError as exc:
             src = self.origin if spec_unit else "the header"
+            good = QUANTITIES[quantity][2].split(", ")[0]
+            example = (f"{quantity} = {{ column = \"{split_header(cell)[0]}\", unit = \"{good}\" }} in {self.origin}"
+                       if spec_unit and self.origin.endswith(".toml") else
+                       f"--columns '{quantity}={split_header(cell)[0]}[{good}]'")
             raise UserError(f"{where}, column '{cell}': {exc} for {quantity} (from {src}); give one of "
-                            f"{QUANTITIES[quantity][2]} (e.g. {self.origin} '{quantity}={split_header(cell)[0]}"
-                            f"[{QUANTITIES[quantity][2].split(', ')[0]}]')") from None
+                            f"{QUANTITIES[quantity][2]}, e.g. {example}") from None
         return Resolved(quantity, cell, unit, a, b)
 
 

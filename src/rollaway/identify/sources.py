@@ -21,7 +21,8 @@ from pathlib import Path
 
 import numpy as np
 
-from rollaway.errors import UserError
+from rollaway.physics.drum import DIRECTIONS
+from rollaway.errors import UserError, suggest
 from rollaway.identify.columns import CANONICAL, TEXT, ColumnMap, Resolved, _find, unit_label
 
 SUFFIXES = {".csv": "csv", ".parquet": "parquet", ".pq": "parquet"}
@@ -114,6 +115,10 @@ def manifest_for(path: Path, manifest: str | None, colmap: ColumnMap) -> dict[st
         except ValueError:
             raise UserError(f"{m}, line {n}, column {cols['hand_force_N'].describe()}: {cell['hand_force_N']!r} is "
                             f"not a number; give the hand force of test '{cell['test_id']}'") from None
+        if cell["direction"] not in DIRECTIONS:
+            raise UserError(f"{m}, line {n}, column {cols['direction'].describe()}: unknown direction "
+                            f"{cell['direction']!r}{suggest(cell['direction'].lower(), DIRECTIONS)}; use 'downhill' "
+                            f"or 'uphill'")
         out[cell["test_id"]] = {"direction": cell["direction"], "hand_force_N": force, "where": f"{m}, line {n}"}
     return out
 
@@ -190,7 +195,7 @@ def plan(path, colmap: ColumnMap | None = None, manifest: str | None = None) -> 
             constants["test_id"] = f.stem
             if "test_id" in cols and per_test:
                 cols.pop("test_id")          # the file name is the test's id
-        for q in ("direction", "hand_force_N"):
+        for q in ("hand_force_N", "direction"):
             if q in cols:
                 continue
             info = (tests or {}).get(str(constants.get("test_id", "")))
@@ -333,13 +338,13 @@ def _batch(fp: FilePlan, rb, first: int, word: str) -> Batch:
 
 
 def read_log(path, colmap: ColumnMap | None = None, manifest: str | None = None,
-             window_s: float | None = None):
+             window_s: float | None = None, notes: list[str] | None = None):
     """Measurements from a bench log (file or folder, CSV or Parquet), reduced when it is dense
     (:mod:`rollaway.identify.reduction`; *window_s* None: automatic, 0: every sample a row)."""
     from rollaway.identify.reduction import Reducer
     plans = plan(path, colmap, manifest)
     reducer = Reducer(keep_raw=2 ** 62 if window_s == 0 else None)
-    notes = []
+    notes = list(notes or [])
     for fp in plans:
         ignored = [h for h in fp.header if h not in {r.header for r in fp.columns.values()}]
         if ignored and len(plans) == 1:
