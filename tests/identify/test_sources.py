@@ -95,7 +95,7 @@ MANIFEST = "test_id,direction,hand_force_N\nD250,downhill,250\nU250,uphill,250\n
     ("mixed units", ["U250.csv", "'Torque [lbf·ft]'", "N·m in D250.csv", "mixed units", "one unit"]),
     ("no hand force", ["D250.csv", "'hand_force_N'", "no hand force", "manifest.csv"]),
     ("not in manifest", ["U250.csv", "'hand_force_N'", "add a row for test 'U250'"]),
-    ("not a number", ["D250.csv", "'Torque [Nm]'", "'n/a?'", "not a number"]),
+    ("not a number", ["D250.csv, line 3, column 'Torque [Nm]'", "'n/a?'", "not a number"]),
     ("late start", ["D250.csv", "line 2", "'Time [ms]'", "starts at 5 s", "time 0"]),
     ("time decreases", ["D250.csv", "line 4", "'Time [ms]'", "time decreases", "sort the rows"]),
     ("bad direction", ["manifest", "direction", "'downhil'", "did you mean 'downhill'"]),

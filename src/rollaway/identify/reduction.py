@@ -24,14 +24,14 @@ batch of the log plus a few numbers per second of log.
 from __future__ import annotations
 
 import math
-from dataclasses import dataclass, field
+from dataclasses import dataclass, field, replace
 
 import numpy as np
 from scipy import optimize
 
 from rollaway.errors import UserError, suggest
 from rollaway.identify.measurements import LIMITS, MAX_LISTED, Measurements, _raise
-from rollaway.identify.noise import Noise
+from rollaway.identify.noise import Noise, sample_sigma
 from rollaway.physics.drum import DIRECTIONS
 
 BIN_S = 1.0                 # statistics are kept per second of log, windows are whole numbers of seconds
@@ -352,6 +352,14 @@ def _raw_noise(sums: list[np.ndarray], e4: list[np.ndarray]) -> tuple[Noise, Noi
 
 def _dof(n_e: float, kurtosis: float) -> float:
     return n_e / OVERLAP * 2.0 / max(kurtosis - 1.0, 0.5)
+
+
+def window_noise(noise: Noise, data: Measurements, level: np.ndarray, mask: np.ndarray) -> Noise:
+    """The noise of a window mean of reduced *data* (RMS of σ(level)/√n over the *mask* rows), for comparisons
+    of residuals of window means with "the noise"."""
+    sig = float(np.sqrt(np.mean(sample_sigma(noise, data, level)[mask] ** 2)))
+    return replace(noise, sigma=sig, note=(noise.note + "; " if noise.note else "") +
+                   f"σ of a window mean (raw-rate σ {noise.sigma:.3g} over √samples)")
 
 
 def reduce_measurements(data: Measurements, window_s: float | None = None) -> Measurements:

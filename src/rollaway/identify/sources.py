@@ -263,7 +263,33 @@ def _csv_batches(fp: FilePlan):
             yield _batch(fp, rb, first, "line")
             first += rb.num_rows
     except pa.ArrowInvalid as exc:
-        raise UserError(_arrow_message(fp, exc, first)) from None
+        raise UserError(_bad_cell(fp) or _arrow_message(fp, exc, first)) from None
+
+
+def _bad_cell(fp: FilePlan) -> str | None:
+    """The first cell of a numeric column that is not a number, as 'file, line N, column C: ...' (a rescan)."""
+    import pyarrow as pa
+    import pyarrow.csv as pcsv
+    numeric = [r.header for q, r in fp.columns.items() if q not in TEXT]
+    ro = pcsv.ReadOptions(block_size=BLOCK_BYTES, skip_rows=fp.header_line - 1)
+    co = pcsv.ConvertOptions(include_columns=numeric, column_types={h: pa.string() for h in numeric})
+    line = fp.header_line + 1
+    try:
+        for rb in pcsv.open_csv(fp.path, read_options=ro, convert_options=co):
+            for h in numeric:
+                cells = rb.column(h).to_pylist()
+                for i, c in enumerate(cells):
+                    if c is None or not c.strip():
+                        continue
+                    try:
+                        float(c)
+                    except ValueError:
+                        return (f"{fp.path}, line {line + i}, column '{h}': {c!r} is not a number; give a value "
+                                f"or delete the row")
+            line += rb.num_rows
+    except pa.ArrowInvalid:
+        return None
+    return None
 
 
 def _parquet_batches(fp: FilePlan):
