@@ -141,3 +141,20 @@ def test_columns_toml_without_table_is_refused(tmp_path):
     f.write_text(COLUMNS_TOML.replace("[columns]", "[cols]"), encoding="utf-8")
     with pytest.raises(UserError, match="no \\[columns\\] table"):
         column_map([f])
+
+
+def test_mdf4_files_with_channel_units_read_as_the_canonical_data(tmp_path, dense):
+    asammdf = pytest.importorskip("asammdf")
+    folder = tmp_path / "mdf"
+    folder.mkdir()
+    frame = dense.to_frame()
+    for tid, part in frame.groupby("test_id", sort=False):
+        t = part["time_s"].to_numpy()
+        m = asammdf.MDF(version="4.10")
+        m.append([asammdf.Signal(part["torque_Nm"].to_numpy() / 1000.0, t, name="Torque", unit="kNm"),
+                  asammdf.Signal(part["drum_temp_C"].to_numpy() + 273.15, t, name="T_drum", unit="K")])
+        m.save(folder / f"{tid}.mf4", overwrite=True)
+        m.close()
+    frame.groupby("test_id", sort=False)[["direction", "hand_force_N"]].first().to_csv(folder / "manifest.csv")
+    d = read_log(folder, column_map(["torque_Nm=Torque", "drum_temp_C=T_drum"]), window_s=0)
+    _same(d, dense)

@@ -23,9 +23,9 @@ import numpy as np
 
 from rollaway.physics.drum import DIRECTIONS
 from rollaway.errors import UserError, suggest
-from rollaway.identify.columns import CANONICAL, TEXT, ColumnMap, Resolved, _find, unit_label
+from rollaway.identify.columns import CANONICAL, TEXT, ColumnMap, Resolved, Spec, _find, unit_label
 
-SUFFIXES = {".csv": "csv", ".parquet": "parquet", ".pq": "parquet"}
+SUFFIXES = {".csv": "csv", ".parquet": "parquet", ".pq": "parquet", ".mf4": "mdf", ".mdf": "mdf"}
 MANIFEST_NAMES = ("manifest.csv", "tests.csv")
 BLOCK_BYTES = 16 << 20          # CSV block read at once (≈ 300 000 rows of a bench log)
 BATCH_ROWS = 262_144            # Parquet rows per batch
@@ -81,6 +81,7 @@ class FilePlan:
     header_line: int
     columns: dict[str, Resolved]
     constants: dict[str, object]
+    channels: tuple | None = None       # MDF: (cell → channel name, master cell)
 
 
 def manifest_for(path: Path, manifest: str | None, colmap: ColumnMap) -> dict[str, dict] | None:
@@ -171,8 +172,8 @@ def plan(path, colmap: ColumnMap | None = None, manifest: str | None = None) -> 
         per_test = True
     elif p.is_file():
         if p.suffix.lower() not in SUFFIXES:
-            raise UserError(f"{p}: unknown file type '{p.suffix}'; give a .csv or .parquet file (or a folder of "
-                            f"them, one per test)")
+            raise UserError(f"{p}: unknown file type '{p.suffix}'; give a .csv, .parquet or .mf4 file (or a "
+                            f"folder of them, one per test)")
         files, per_test = [p], False
     else:
         raise UserError(f"measurement file '{p}' does not exist; check the path")
@@ -180,7 +181,15 @@ def plan(path, colmap: ColumnMap | None = None, manifest: str | None = None) -> 
     plans = []
     for f in files:
         kind = SUFFIXES[f.suffix.lower()]
-        header, hline = read_header(f, kind)
+        channels = None
+        if kind == "mdf":
+            from rollaway.identify import mdf
+            header, names, master = mdf.header(f)
+            hline, channels = 0, (names, master)
+            if "time_s" not in colmap.specs and master is not None and "time_s" not in header:
+                colmap = ColumnMap({**colmap.specs, "time_s": Spec(master)}, colmap.origin)
+        else:
+            header, hline = read_header(f, kind)
         where = f"{f}, line {hline}" if kind == "csv" else str(f)
         cols = {}
         for q in CANONICAL:
@@ -218,7 +227,7 @@ def plan(path, colmap: ColumnMap | None = None, manifest: str | None = None) -> 
                                 f"{', '.join(repr(h) for h in header[:8])}{', ...' if len(header) > 8 else ''} — "
                                 f"map the column that holds {q} with --columns '{q}=<column>[unit]'"
                                 + (f" ({spec.column!r} is not there)" if spec else ""))
-        plans.append(FilePlan(f, kind, header, hline, cols, constants))
+        plans.append(FilePlan(f, kind, header, hline, cols, constants, channels))
     _check_units(plans, p)
     return plans
 
@@ -243,7 +252,13 @@ def _check_units(plans: list[FilePlan], folder: Path) -> None:
 # -- reading -----------------------------------------------------------------------------------
 def batches(fp: FilePlan):
     """The rows of one planned file as :class:`Batch` es (SI units)."""
-    if fp.kind == "parquet":
+    if fp.kind == "mdf":
+        from rollaway.identify.mdf import record_batches
+        first = 1
+        for rb in record_batches(fp.path, [r.header for r in fp.columns.values()], *fp.channels):
+            yield _batch(fp, rb, first, "row")
+            first += rb.num_rows
+    elif fp.kind == "parquet":
         yield from _parquet_batches(fp)
     else:
         yield from _csv_batches(fp)
