@@ -71,7 +71,7 @@ def bench(rows_list, effect: str) -> None:
                 continue
             d = json.loads((Path(tmp) / "d.json").read_text())
             lo, hi = d["refined"]["parameters"]["mu_drum"]["ci95"]
-            target = min((k for k in TARGETS if k >= 0.9 * rows), default=None)
+            target = next((k for k in TARGETS if 0.9 * k <= rows <= 1.1 * k), None)
             goal = ""
             if target is not None:
                 units_max, mb_max = TARGETS[target]
