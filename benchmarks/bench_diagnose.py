@@ -25,27 +25,33 @@ import numpy as np
 
 sys.path.insert(0, str(Path(__file__).resolve().parent))
 
-from rollaway.identify.synth import synth  # noqa: E402
-
 TESTS, DURATION_S = 8, 3600.0
 TARGETS = {288_000: (6.0, 400.0), 2_880_000: (40.0, 1536.0)}
 
 
 def write_log(rows: int, path: Path, effect: str, seed: int = 1) -> dict:
-    """8 tests × 1 h with about *rows* rows in all; returns the truth."""
+    """8 tests × 1 h with about *rows* rows in all, written by ``rollaway synth`` in its own interpreter (so
+    that this process stays small: a child's peak RSS counts the parent's pages it started from)."""
+    from rollaway.parameters import paper
     dt = TESTS * DURATION_S / rows
-    d = synth([effect] if effect else [], seed=seed, dt_s=dt, duration_s=DURATION_S)
-    d.to_csv(path)
-    return {"rows": len(d), "hz": 1.0 / dt, "mu_drum": d.truth["values"]["mu_drum"]}
+    cmd = [sys.executable, "-m", "rollaway", "synth", "--dt-s", repr(dt), "--duration-s", repr(DURATION_S),
+           "--seed", str(seed), "--out", str(path)] + (["--effect", effect] if effect else [])
+    subprocess.run(cmd, check=True, capture_output=True, env=_env())
+    n = sum(1 for _ in open(path, encoding="utf-8")) - 1
+    return {"rows": n, "hz": 1.0 / dt, "mu_drum": paper().mu_drum}
+
+
+def _env() -> dict:
+    env = dict(os.environ)
+    env["PYTHONPATH"] = str(Path(__file__).resolve().parents[1] / "src") + os.pathsep + env.get("PYTHONPATH", "")
+    return env
 
 
 def run_cli(path: Path, json_out: Path) -> tuple[float, float, int]:
     """(wall s, peak RSS MB, exit code) of ``rollaway diagnose PATH`` in its own interpreter."""
-    env = dict(os.environ)
-    env["PYTHONPATH"] = str(Path(__file__).resolve().parents[1] / "src") + os.pathsep + env.get("PYTHONPATH", "")
     t = time.perf_counter()
     p = subprocess.Popen([sys.executable, "-m", "rollaway", "diagnose", str(path), "--json", str(json_out)],
-                         stdout=subprocess.DEVNULL, stderr=subprocess.PIPE, env=env)
+                         stdout=subprocess.DEVNULL, stderr=subprocess.PIPE, env=_env())
     _, status, usage = os.wait4(p.pid, 0)
     wall = time.perf_counter() - t
     err = p.stderr.read().decode()
@@ -87,6 +93,7 @@ def bench(rows_list, effect: str) -> None:
 def scaling() -> None:
     """In-process diagnose time against tests and rows (whole catalogue, hidden lining_creep)."""
     from rollaway.identify.diagnose import diagnose
+    from rollaway.identify.synth import synth
 
     def data(n_forces, dt_s):
         return synth(["lining_creep"], seed=1, dt_s=dt_s, hand_forces_N=tuple(np.linspace(150.0, 400.0, n_forces)))

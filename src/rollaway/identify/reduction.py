@@ -235,6 +235,11 @@ class Reducer:
             if window_s < 0 or (window_s > 0 and abs(window_s / BIN_S - round(window_s / BIN_S)) > 1e-9):
                 raise UserError(f"--window-s {window_s:g}: give a whole number of seconds ≥ 1 (0: fit every sample)")
             w, reduce = float(window_s), window_s > 0
+            per_window = float(np.median((counts - 1) / np.maximum(durations, 1e-300))) * w
+            if reduce and per_window < 3:
+                raise UserError(f"--window-s {window_s:g}: the log has about {per_window:.1f} samples per window; a "
+                                f"window mean needs several (its noise is measured between consecutive samples) — "
+                                f"give a longer window, or 0 to fit every sample")
         notes = list(notes or [])
         if not reduce:
             if any(not t.raw for t in self.tests.values()) or sum(len(r[0]) for t in self.tests.values()

@@ -30,7 +30,6 @@ MANIFEST_NAMES = ("manifest.csv", "tests.csv")
 BLOCK_BYTES = 1 << 20         # CSV block (≈ 25 000 rows): pyarrow keeps ~30 blocks in flight, so 1 MB blocks hold
 #                                 the reader to ~40 MB (16 MB blocks: ~500 MB); larger blocks are not faster here
 BATCH_ROWS = 262_144            # Parquet rows per batch
-PER_FILE = ("test_id",)         # quantities a file per test may lack (they come from its name)
 
 
 @dataclass
