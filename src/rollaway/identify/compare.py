@@ -8,7 +8,7 @@ import numpy as np
 
 from rollaway.identify.calibrate import FitResult, calibrate, evaluate
 from rollaway.identify.measurements import Measurements
-from rollaway.identify.reduction import window_noise
+from rollaway.identify.rawnoise import window_noise
 from rollaway.identify.residuals import Noise, association, excursions, noise_estimate, trend_words
 
 NOISE_BAND = 2.5   # a residual leaves the noise band when |r| > 2.5 σ

@@ -50,13 +50,15 @@ class Noise:
     reliable: bool = True
     source: str = "data"            # "data" (pseudo-residuals) or "instrument" (given by the user)
     note: str = ""
+    mean_factor: float = 1.0        # σ of a mean of n consecutive samples is mean_factor·σ/√n (correlated noise)
 
     def at(self, level) -> np.ndarray:
         return np.sqrt(self.absolute ** 2 + (self.relative * np.asarray(level, float)) ** 2)
 
     def as_dict(self):
         return {"sigma": self.sigma, "dof": self.dof, "absolute": self.absolute, "relative": self.relative,
-                "degree": self.degree, "reliable": self.reliable, "source": self.source, "note": self.note}
+                "degree": self.degree, "reliable": self.reliable, "source": self.source, "note": self.note,
+                "mean_factor": self.mean_factor}
 
     @classmethod
     def instrument(cls, sigma: float, relative: float = 0.0) -> "Noise":
@@ -142,7 +144,7 @@ def sample_sigma(noise: Noise, data, level) -> np.ndarray:
     """σ of each row of *data*: the noise model at the row's level over √(raw samples averaged into the row)."""
     s = noise.at(level)
     count = getattr(data, "count", None)
-    return s if count is None else s / np.sqrt(count)
+    return s if count is None else s / np.sqrt(count) * np.where(count > 1, noise.mean_factor, 1.0)
 
 
 def noise_estimate(data, values: np.ndarray, time_constant_s: float, relative: bool = False) -> Noise | None:

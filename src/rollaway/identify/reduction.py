@@ -27,11 +27,11 @@ import math
 from dataclasses import dataclass, field, replace
 
 import numpy as np
-from scipy import optimize
 
 from rollaway.errors import UserError, suggest
 from rollaway.identify.measurements import LIMITS, MAX_LISTED, Measurements, _raise
 from rollaway.identify.noise import Noise, sample_sigma
+from rollaway.identify.rawnoise import dispersion, raw_noise
 from rollaway.physics.drum import DIRECTIONS
 
 BIN_S = 1.0                 # statistics are kept per second of log, windows are whole numbers of seconds
@@ -41,9 +41,6 @@ KEEP_RAW_ROWS = 200_000     # raw rows kept in memory for a log that turns out n
 # sufficient statistics per bin: n, Σt, ΣT, ΣM, Σambient, n_e, Σe_T², Σe_M²
 N, ST, STEMP, SQ, SAMB, NE, E2T, E2Q = range(8)
 WIDTH = 8
-# pseudo-residuals of overlapping 3-sample windows share samples: n_e of them carry about n_e/1.94
-# independent squares for Gaussian noise (lag-1, lag-2 correlations −2/3, 1/6 on a regular grid)
-OVERLAP = 1.0 + 2.0 * ((2.0 / 3.0) ** 2 + (1.0 / 6.0) ** 2)
 
 
 @dataclass
@@ -277,7 +274,16 @@ class Reducer:
             sums = np.zeros((len(win), WIDTH))
             np.add.at(sums, inv, stats)
             per_test.append((st, sums))
-        nq, nt = _raw_noise([s for _, s in per_test], [st.e4 for st, _ in per_test])
+        nq, nt = raw_noise([s for _, s in per_test], [st.e4 for st, _ in per_test])
+        # noise correlated between samples (a DAQ filter) makes σ/√n too small: the scatter of the window
+        # means about a smooth curve says by how much, and the standard errors are widened by that factor
+        kq, kt = dispersion([(s[:, ST] / s[:, N], s[:, STEMP] / s[:, N], s[:, SQ] / s[:, N], s[:, N])
+                             for s in (sums[sums[:, N] > 0] for _, sums in per_test)], nq, nt)
+        nq, nt = replace(nq, mean_factor=kq), replace(nt, mean_factor=kt)
+        for ch, kappa in (("torque", kq), ("drum temperature", kt)):
+            if kappa > 1.0:
+                notes.append(f"{ch} noise is correlated between samples: window standard errors widened "
+                             f"×{kappa:.2f} (the scatter of the window means about a smooth curve)")
         rows = {k_: [] for k_ in ("id", "dir", "F", "t", "T", "M", "amb", "n")}
         for st, sums in per_test:
             keep = sums[:, N] > 0
@@ -299,8 +305,9 @@ class Reducer:
         data = Measurements(cat["id"].astype(str), cat["dir"].astype(str), cat["F"], cat["t"], cat["T"], cat["M"],
                             cat["amb"] if self.has_ambient else None, f"{source} ({red.summary()})", None,
                             notes + [red.summary()],
-                            np.maximum(nq.at(cat["M"]), 1e-9) / np.sqrt(count),
-                            np.maximum(nt.at(cat["T"]), 1e-9) / np.sqrt(count), count=count, reduction=red)
+                            None, None, count=count, reduction=red)
+        data.torque_sigma_Nm = np.maximum(sample_sigma(nq, data, data.torque_Nm), 1e-9)
+        data.temp_sigma_C = np.maximum(sample_sigma(nt, data, data.drum_temp_C), 1e-9)
         return data
 
 
@@ -329,45 +336,6 @@ def _check_numbers(b, q: str, x: np.ndarray, problems: list[str]) -> None:
         read = f" (read as {r.unit})" if r is not None and r.unit else ""
         problems.append(f"{b.at(i)}, column {b.column(q)}: {x[i]:g} {unit} is outside [{lo:g}, {hi:g}]{read}; check "
                         f"the unit (map it with --columns '{q}=<column>[unit]')")
-
-
-def _raw_noise(sums: list[np.ndarray], e4: list[np.ndarray]) -> tuple[Noise, Noise]:
-    """Raw-rate noise of both channels from the per-window pseudo-residual sums (torque: absolute + relative)."""
-    s = np.concatenate(sums)
-    s = s[s[:, NE] > 0]
-    ne = s[:, NE]
-    total = float(ne.sum())
-    e4 = np.sum(e4, axis=0)
-    kurt_t = e4[0] * total / max(float(s[:, E2T].sum()) ** 2, 1e-300)
-    kurt_q = e4[1] * total / max(float(s[:, E2Q].sum()) ** 2, 1e-300)
-    note = f"estimated at the raw rate ({int(total):,} pseudo-residuals of consecutive samples)"
-    a_t = math.sqrt(float(s[:, E2T].sum()) / total)
-    nt = Noise(a_t, _dof(total, kurt_t), a_t, 0.0, 1, True, "data", note)
-    level = s[:, SQ] / np.maximum(s[:, N], 1)
-    mean_e2 = s[:, E2Q] / ne
-    a2, b2 = float(s[:, E2Q].sum()) / total, 0.0
-    design = np.column_stack([np.ones_like(level), level ** 2])
-    for _ in range(4):      # weighted least squares of the mean squares (variance ∝ σ⁴/n_e)
-        wgt = np.sqrt(ne) / np.maximum(a2 + b2 * level ** 2, 1e-300)
-        (a2, b2), _ = optimize.nnls(design * wgt[:, None], mean_e2 * wgt)
-        if a2 + b2 * float(np.mean(level ** 2)) <= 0:
-            a2, b2 = float(s[:, E2Q].sum()) / total, 0.0
-            break
-    sig = math.sqrt(float(np.sum(ne * (a2 + b2 * level ** 2)) / total))
-    nq = Noise(sig, _dof(total, kurt_q), math.sqrt(max(a2, 0.0)), math.sqrt(max(b2, 0.0)), 1, True, "data", note)
-    return nq, nt
-
-
-def _dof(n_e: float, kurtosis: float) -> float:
-    return n_e / OVERLAP * 2.0 / max(kurtosis - 1.0, 0.5)
-
-
-def window_noise(noise: Noise, data: Measurements, level: np.ndarray, mask: np.ndarray) -> Noise:
-    """The noise of a window mean of reduced *data* (RMS of σ(level)/√n over the *mask* rows), for comparisons
-    of residuals of window means with "the noise"."""
-    sig = float(np.sqrt(np.mean(sample_sigma(noise, data, level)[mask] ** 2)))
-    return replace(noise, sigma=sig, note=(noise.note + "; " if noise.note else "") +
-                   f"σ of a window mean (raw-rate σ {noise.sigma:.3g} over √samples)")
 
 
 def reduce_measurements(data: Measurements, window_s: float | None = None) -> Measurements:
