@@ -49,6 +49,13 @@ def test_canonical_csv_through_the_streaming_reader_matches_the_strict_loader(tm
     _same(read_log(f, window_s=0), load_measurements(f))
 
 
+def test_european_csv_semicolons_and_decimal_commas(tmp_path, dense):
+    f = tmp_path / "all.csv"
+    dense.to_frame().to_csv(f, sep=";", decimal=",", index=False)
+    assert "," in f.read_text().splitlines()[2]
+    _same(read_log(f, window_s=0), dense)
+
+
 def test_single_file_without_test_id_is_one_test_named_after_the_file(tmp_path):
     f = tmp_path / "D250.csv"
     pd.DataFrame({"time_s": [0.0, 1.0, 2.0], "drum_temp_C": [200.0, 199.0, 198.0], "torque_Nm": [800.0, 801.0, 799.0],

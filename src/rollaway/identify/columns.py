@@ -232,7 +232,7 @@ def column_map(values) -> ColumnMap:
     specs: dict[str, Spec] = {}
     origins = []
     for v in values or ():
-        if str(v).lower().endswith(".toml"):
+        if str(v).lower().endswith(".toml") or ("=" not in str(v) and Path(v).is_file()):
             data = read_toml(v, "column map", "a [columns] table, see docs/how-to/bench-logs.md")
             if "columns" not in data:
                 raise UserError(f"{v}: no [columns] table; add one, e.g. [columns] torque_Nm = \"Torque [Nm]\"")

@@ -30,6 +30,7 @@ MANIFEST_NAMES = ("manifest.csv", "tests.csv")
 BLOCK_BYTES = 1 << 20         # CSV block (≈ 25 000 rows): pyarrow keeps ~30 blocks in flight, so 1 MB blocks hold
 #                                 the reader to ~40 MB (16 MB blocks: ~500 MB); larger blocks are not faster here
 BATCH_ROWS = 262_144            # Parquet rows per batch
+DIALECT = (",", ".")            # CSV delimiter and decimal mark
 
 
 @dataclass
@@ -82,6 +83,7 @@ class FilePlan:
     columns: dict[str, Resolved]
     constants: dict[str, object]
     channels: tuple | None = None       # MDF: (cell → channel name, master cell)
+    dialect: tuple[str, str] = DIALECT  # CSV: delimiter, decimal mark
 
 
 def manifest_for(path: Path, manifest: str | None, colmap: ColumnMap) -> dict[str, dict] | None:
@@ -136,12 +138,13 @@ def _read_small_csv(path: Path):
     return [h.strip() for h in header], line, body
 
 
-def read_header(path: Path, kind: str) -> tuple[list[str], int]:
-    """The column names of a file and the line they are on (Parquet: the schema, line 0)."""
+def read_header(path: Path, kind: str) -> tuple[list[str], int, tuple[str, str]]:
+    """The column names of a file, the line they are on (Parquet: the schema, line 0) and the CSV dialect
+    (delimiter, decimal mark): ',' and '.', or as European exports write them, ';' (or tab) and ','."""
     if kind == "parquet":
         import pyarrow.parquet as pq
         try:
-            return list(pq.ParquetFile(path).schema_arrow.names), 0
+            return list(pq.ParquetFile(path).schema_arrow.names), 0, DIALECT
         except Exception as exc:      # pyarrow raises several kinds for a file that is not Parquet
             raise UserError(f"{path}: not a readable Parquet file ({exc}); export it again") from None
     try:
@@ -151,7 +154,11 @@ def read_header(path: Path, kind: str) -> tuple[list[str], int]:
                     if "\x00" in line:
                         raise UserError(f"{path}, line {line_no}: a NUL byte; this is not a text CSV file — "
                                         f"export the data again")
-                    return [h.strip() for h in next(csv.reader([line]))], line_no
+                    delim = max((",", ";", "\t"), key=line.count)
+                    delim = delim if line.count(delim) else ","
+                    data = fh.readline()
+                    decimal = "," if delim != "," and re.search(r"\d,\d", data) else "."
+                    return [h.strip() for h in next(csv.reader([line], delimiter=delim))], line_no, (delim, decimal)
     except UnicodeDecodeError:
         raise UserError(f"{path}, line 1: not a UTF-8 text file; save the measurements as UTF-8 CSV") from None
     raise UserError(f"{path}, line 1: the file is empty; expected a header row")
@@ -181,7 +188,7 @@ def plan(path, colmap: ColumnMap | None = None, manifest: str | None = None) -> 
     plans = []
     for f in files:
         kind = SUFFIXES[f.suffix.lower()]
-        channels = None
+        channels, dialect = None, DIALECT
         if kind == "mdf":
             from rollaway.identify import mdf
             header, names, master = mdf.header(f)
@@ -189,7 +196,7 @@ def plan(path, colmap: ColumnMap | None = None, manifest: str | None = None) -> 
             if "time_s" not in colmap.specs and master is not None and "time_s" not in header:
                 colmap = ColumnMap({**colmap.specs, "time_s": Spec(master)}, colmap.origin)
         else:
-            header, hline = read_header(f, kind)
+            header, hline, dialect = read_header(f, kind)
         where = f"{f}, line {hline}" if kind == "csv" else str(f)
         cols = {}
         for q in CANONICAL:
@@ -227,7 +234,7 @@ def plan(path, colmap: ColumnMap | None = None, manifest: str | None = None) -> 
                                 f"{', '.join(repr(h) for h in header[:8])}{', ...' if len(header) > 8 else ''} — "
                                 f"map the column that holds {q} with --columns '{q}=<column>[unit]'"
                                 + (f" ({spec.column!r} is not there)" if spec else ""))
-        plans.append(FilePlan(f, kind, header, hline, cols, constants, channels))
+        plans.append(FilePlan(f, kind, header, hline, cols, constants, channels, dialect))
     _check_units(plans, p)
     return plans
 
@@ -270,10 +277,12 @@ def _csv_batches(fp: FilePlan):
     types = {r.header: (pa.dictionary(pa.int32(), pa.string()) if q in TEXT else pa.float64())
              for q, r in fp.columns.items()}
     ro = pcsv.ReadOptions(block_size=BLOCK_BYTES, skip_rows=fp.header_line - 1, use_threads=True)
-    co = pcsv.ConvertOptions(include_columns=list(types), column_types=types, strings_can_be_null=True)
+    co = pcsv.ConvertOptions(include_columns=list(types), column_types=types, strings_can_be_null=True,
+                             decimal_point=fp.dialect[1])
     first = fp.header_line + 1
     try:
-        reader = pcsv.open_csv(fp.path, read_options=ro, convert_options=co)
+        reader = pcsv.open_csv(fp.path, read_options=ro, convert_options=co,
+                               parse_options=pcsv.ParseOptions(delimiter=fp.dialect[0]))
         for rb in reader:
             yield _batch(fp, rb, first, "line")
             first += rb.num_rows
@@ -290,14 +299,15 @@ def _bad_cell(fp: FilePlan) -> str | None:
     co = pcsv.ConvertOptions(include_columns=numeric, column_types={h: pa.string() for h in numeric})
     line = fp.header_line + 1
     try:
-        for rb in pcsv.open_csv(fp.path, read_options=ro, convert_options=co):
+        for rb in pcsv.open_csv(fp.path, read_options=ro, convert_options=co,
+                                parse_options=pcsv.ParseOptions(delimiter=fp.dialect[0])):
             for h in numeric:
                 cells = rb.column(h).to_pylist()
                 for i, c in enumerate(cells):
                     if c is None or not c.strip():
                         continue
                     try:
-                        float(c)
+                        float(c.replace(fp.dialect[1], "."))
                     except ValueError:
                         return (f"{fp.path}, line {line + i}, column '{h}': {c!r} is not a number; give a value "
                                 f"or delete the row")
