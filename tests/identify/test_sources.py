@@ -69,7 +69,8 @@ def test_lab_exports_give_the_canonical_verdict_through_the_cli(run_cli, tmp_pat
     dense.to_csv(canonical)
     folder = export_folder(dense, tmp_path / "lab", "parquet")
     verdicts = []
-    for args in ([canonical, "--window-s", "2"], [folder]):          # the folder's columns.toml is found by itself
+    model = tmp_path / "m.toml"
+    for args in ([canonical, "--window-s", "2"], [folder, "--save-model", model]):   # columns.toml found by itself
         code, out, err = run_cli("diagnose", *args, "--format", "json")
         assert code == 0, err
         d = json.loads(out)
@@ -77,6 +78,7 @@ def test_lab_exports_give_the_canonical_verdict_through_the_cli(run_cli, tmp_pat
         assert "read 14,404 rows" in err and "reduced to" in err
         verdicts.append((d["verdict"], d["refined"]["parameters"]["mu_drum"]["value"]))
     assert verdicts[0][0] == verdicts[1][0] == "lining_creep"
+    assert 'data_file = "lab/"' in model.read_text() and f"rows = {len(dense)}" in model.read_text()
     assert verdicts[0][1] == pytest.approx(verdicts[1][1], rel=1e-7)
 
 
