@@ -167,3 +167,19 @@ def test_mdf4_files_with_channel_units_read_as_the_canonical_data(tmp_path, dens
     frame.groupby("test_id", sort=False)[["direction", "hand_force_N"]].first().to_csv(folder / "manifest.csv")
     d = read_log(folder, column_map(["torque_Nm=Torque", "drum_temp_C=T_drum"]), window_s=0)
     _same(d, dense)
+
+
+def test_rows_before_the_lever_is_applied_are_read_but_not_kept(tmp_path, dense):
+    frame = dense.to_frame()
+    pre = frame.groupby("test_id", sort=False).head(50).copy()
+    pre["time_s"] = pre["time_s"] - 5.0                         # 5 s of pre-trigger log per test
+    both = pd.concat([pre, frame]).sort_values(["test_id", "time_s"], kind="stable")
+    both = both.set_index("test_id").loc[list(dense.tests)].reset_index()
+    f = tmp_path / "pretrigger.csv"
+    both.to_csv(f, index=False)
+    d = read_log(f, window_s=0)
+    _same(d, dense)
+    info = d.rows_info()
+    assert info["rows_read"] == len(dense) + 200 and info["rows_kept"] == len(dense)
+    assert any("200 rows logged before time 0" in n for n in d.notes)
+    assert "kept 14,404" in d.reduction.summary() and "read 14,604" in d.reduction.summary()

@@ -98,6 +98,7 @@ class Reducer:
     def __init__(self, keep_raw: int | None = None):
         self.tests: dict[str, _Test] = {}
         self.rows = 0
+        self.before_zero = 0                  # rows logged before the lever was applied (t < 0): not kept
         self.keep_raw = KEEP_RAW_ROWS if keep_raw is None else keep_raw
         self.has_ambient: bool | None = None
 
@@ -115,7 +116,7 @@ class Reducer:
                   "torque_Nm": b.torque_Nm, "ambient_C": b.ambient_C}
         for q, x in values.items():
             if x is not None:
-                _check_numbers(b, q, x, problems)
+                _check_numbers(b, q, x, problems, lower=q != "time_s")
         codes = b.test_id.codes
         if np.any(codes < 0):
             i = int(np.flatnonzero(codes < 0)[0])
@@ -171,13 +172,19 @@ class Reducer:
                             f"{before.split(', ')[-1]}, then {t[i]:g} s); sort the rows of each test by time and "
                             f"remove repeated ones")
             return
+        if t[0] < 0:                        # a pre-trigger stretch before the lever was applied: not kept
+            st.last_t, st.last_where = float(t[t < 0][-1]), b.at(rows[int(np.sum(t < 0)) - 1])
+            self.before_zero += int(np.sum(t < 0))
+            rows, t, force = rows[t >= 0], t[t >= 0], force[t >= 0]
+            if not rows.size:
+                return
         if st.n == 0 and t[0] != 0.0:
             problems.append(f"{b.at(rows[0])}, column {b.column('time_s')}: test '{name}' starts at {t[0]:g} s; each "
                             f"test must start at time 0 (lever applied), which defines its T_0 — shift its times")
             return
         temp, torque = b.drum_temp_C[rows], b.torque_Nm[rows]
         amb = b.ambient_C[rows] if b.ambient_C is not None else np.zeros(rows.size)
-        if self.rows <= self.keep_raw:
+        if self.rows - self.before_zero <= self.keep_raw:
             st.raw.append((t, temp, torque, amb))
         elif self.keep_raw >= 0:            # too many to keep: the log will be reduced (free what was kept)
             for other in self.tests.values():
@@ -241,13 +248,19 @@ class Reducer:
                                 f"window mean needs several (its noise is measured between consecutive samples) — "
                                 f"give a longer window, or 0 to fit every sample")
         notes = list(notes or [])
+        if self.before_zero:
+            notes.append(f"{self.before_zero:,} rows logged before time 0 (before the lever was applied) are not used")
         if not reduce:
             if any(not t.raw for t in self.tests.values()) or sum(len(r[0]) for t in self.tests.values()
-                                                                   for r in t.raw) != self.rows:
+                                                                   for r in t.raw) != self.kept:
                 raise UserError(f"{source}: {self.rows:,} rows are too many to fit sample by sample here; leave "
                                 f"--window-s out (automatic window) or give a window in seconds")
             return self._raw(source, files, notes)
         return self._reduced(source, files, w, notes)
+
+    @property
+    def kept(self) -> int:
+        return self.rows - self.before_zero
 
     def _raw(self, source: str, files: int, notes: list[str]) -> Measurements:
         ids, dirs, force, cols = [], [], [], [[], [], [], []]
@@ -259,7 +272,7 @@ class Reducer:
             for k in range(4):
                 cols[k].append(np.concatenate([r[k] for r in st.raw]))
         t, temp, torque, amb = (np.concatenate(c) for c in cols)
-        red = Reduction(self.rows, self.rows, self.rows, None, files, notes=notes)
+        red = Reduction(self.rows, self.kept, self.kept, None, files, notes=notes)
         return Measurements(np.concatenate(ids).astype(str), np.concatenate(dirs).astype(str), np.concatenate(force),
                             t, temp, torque, amb if self.has_ambient else None,
                             f"{source} ({red.summary()})", None, notes, reduction=red)
@@ -300,7 +313,7 @@ class Reducer:
             rows["amb"].append(np.concatenate([[A0], s[:, SAMB] / n]))
             rows["n"].append(np.concatenate([[1.0], n]))
         cat = {k_: np.concatenate(v) for k_, v in rows.items()}
-        red = Reduction(self.rows, self.rows, len(cat["t"]), w, files, nq, nt, notes)
+        red = Reduction(self.rows, self.kept, len(cat["t"]), w, files, nq, nt, notes)
         count = cat["n"]
         data = Measurements(cat["id"].astype(str), cat["dir"].astype(str), cat["F"], cat["t"], cat["T"], cat["M"],
                             cat["amb"] if self.has_ambient else None, f"{source} ({red.summary()})", None,
@@ -321,8 +334,9 @@ def _accumulate(st: _Test, bins: np.ndarray, values: np.ndarray, col: int) -> No
     st.stats.append(out)
 
 
-def _check_numbers(b, q: str, x: np.ndarray, problems: list[str]) -> None:
+def _check_numbers(b, q: str, x: np.ndarray, problems: list[str], lower: bool = True) -> None:
     lo, hi, unit = LIMITS[q]
+    lo = lo if lower else -hi
     bad = ~np.isfinite(x)
     if np.any(bad):
         i = int(np.flatnonzero(bad)[0])
