@@ -55,7 +55,7 @@ def test_raw_rate_noise_and_per_row_standard_errors():
     # rows carry σ(level)/√n; the noise checks of the fits see the raw-rate noise, not the window scatter
     assert np.allclose(red.torque_sigma_Nm, sample_sigma(nq, red, red.torque_Nm))
     assert red.count[0] == 1 and red.time_s[0] == 0.0 and red.count.sum() == len(raw)
-    assert np.median(red.count) == 30.0 == red.reduction.window_s * 10     # 3 s windows of a 10 min test
+    assert np.median(red.count) == red.reduction.window_s * 10 == 100.0    # 10 s windows of a 10 min test
     assert noise_estimate(red, red.torque_Nm, 1000.0, relative=True) is nq
     fit = calibrate(red, ["lining_creep"])
     assert 0.8 < fit.variance_factor["torque"] < 1.25 and 0.8 < fit.variance_factor["temperature"] < 1.25

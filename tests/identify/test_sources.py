@@ -70,11 +70,11 @@ def test_lab_exports_give_the_canonical_verdict_through_the_cli(run_cli, tmp_pat
     folder = export_folder(dense, tmp_path / "lab", "parquet")
     verdicts = []
     model = tmp_path / "m.toml"
-    for args in ([canonical, "--window-s", "2"], [folder, "--save-model", model]):   # columns.toml found by itself
+    for args in ([canonical, "--window-s", "6"], [folder, "--save-model", model]):   # columns.toml found by itself
         code, out, err = run_cli("diagnose", *args, "--format", "json")
         assert code == 0, err
         d = json.JSONDecoder().raw_decode(out)[0]          # (--save-model adds a line after the JSON)
-        assert d["data"]["rows_read"] == len(dense) and d["data"]["window_s"] == 2.0
+        assert d["data"]["rows_read"] == len(dense) and d["data"]["window_s"] == 6.0
         assert "read 14,404 rows" in err and "reduced to" in err
         verdicts.append((d["verdict"], d["refined"]["parameters"]["mu_drum"]["value"]))
     assert verdicts[0][0] == verdicts[1][0] == "lining_creep"

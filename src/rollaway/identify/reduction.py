@@ -35,7 +35,13 @@ from rollaway.identify.rawnoise import dispersion, raw_noise
 from rollaway.physics.drum import DIRECTIONS
 
 BIN_S = 1.0                 # statistics are kept per second of log, windows are whole numbers of seconds
-TARGET_ROWS = 240           # windows per test (longest test) when reducing automatically
+# A window mean differs from the model at the window's mean time by f''·w²/24 (the curvature of the physics:
+# cooling, creep, relaxation, time constants ≥ 10 min); relative to its standard error σ/√(rate·w) that
+# is ∝ w^2.5·√rate, and it adds up coherently over the log's w⁻¹ windows: a fitted parameter moves by
+# ∝ w²·√rate of its standard error (0.30 at 15 s and 100 Hz, measured on synth's logs).  The automatic
+# window keeps w²·√rate ≤ WINDOW_C (≤ 0.1 standard error): 27 s at 1 Hz, 15 s at 10 Hz, 8 s at 100 Hz.
+WINDOW_C = 750.0
+MIN_ROWS = 60               # windows per test at least (a short test keeps its time resolution)
 MIN_PER_WINDOW = 8          # reduce only when a window holds at least this many samples (median test)
 KEEP_RAW_ROWS = 200_000     # raw rows kept in memory for a log that turns out not to need reducing
 # sufficient statistics per bin: n, Σt, ΣT, ΣM, Σambient, n_e, Σe_T², Σe_M²
@@ -233,10 +239,7 @@ class Reducer:
         counts = np.array([t.n for t in self.tests.values()])
         rate = float(np.median((counts - 1) / np.maximum(durations, 1e-300)))      # samples per second
         if window_s is None:
-            # a window's curvature bias against its standard error grows as w^2.5·√rate: above 100 Hz
-            # the windows shrink as rate^(-1/5) to keep it where it is at 100 Hz (≤ 0.1 σ/√n, tested)
-            rows = TARGET_ROWS * max(1.0, rate / 100.0) ** 0.2
-            w = max(BIN_S, math.ceil(float(durations.max()) / rows / BIN_S) * BIN_S)
+            w = auto_window(rate, float(durations.max()))
             reduce = rate * w >= MIN_PER_WINDOW
         else:
             if window_s < 0 or (window_s > 0 and abs(window_s / BIN_S - round(window_s / BIN_S)) > 1e-9):
@@ -322,6 +325,12 @@ class Reducer:
         data.torque_sigma_Nm = np.maximum(sample_sigma(nq, data, data.torque_Nm), 1e-9)
         data.temp_sigma_C = np.maximum(sample_sigma(nt, data, data.drum_temp_C), 1e-9)
         return data
+
+
+def auto_window(rate_hz: float, duration_s: float) -> float:
+    """The automatic window [s]: w²·√rate ≤ WINDOW_C, at least MIN_ROWS windows in the longest test."""
+    w = math.floor(math.sqrt(WINDOW_C / math.sqrt(max(rate_hz, 1e-9))) / BIN_S) * BIN_S
+    return float(max(BIN_S, min(w, math.floor(duration_s / MIN_ROWS / BIN_S) * BIN_S)))
 
 
 def _accumulate(st: _Test, bins: np.ndarray, values: np.ndarray, col: int) -> None:
