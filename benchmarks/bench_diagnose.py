@@ -1,12 +1,20 @@
-"""How diagnose's wall time grows with tests and rows (whole catalogue), plus the CLI at 10 000 rows.
+"""``rollaway diagnose`` on bench logs of 0.1–100 Hz through the CLI: wall time in reference units and peak memory.
 
-    PYTHONPATH=src python benchmarks/bench_diagnose.py
+    PYTHONPATH=src python benchmarks/bench_diagnose.py --rows 288000      # one log (8 tests × 1 h: 10 Hz)
+    PYTHONPATH=src python benchmarks/bench_diagnose.py                    # 0.1, 1, 10 and 100 Hz
+    PYTHONPATH=src python benchmarks/bench_diagnose.py --scaling          # in-process scaling with tests and rows
 
-Prints seconds per run and the ratio to the reference (8 tests × 13 samples = 104 rows) measured in
-the same run; targets: ≤ 1 s in-process at 104 rows, ≤ 5 s through the CLI at 10 000 rows / 164 tests.
+Each log is 8 tests of an hour (``rollaway synth``, hidden lining_creep unless ``--effect``) written as a CSV
+under a temporary folder; the CLI runs in a fresh interpreter and its peak resident memory is that process's
+(``wait4``).  Wall time is also given in the reference unit of :mod:`benchmarks.reference` (300 000 raw
+``mj_step`` calls, measured in the same run).  Targets (issue 20): 288 000 rows ≤ 6 units and ≤ 400 MB,
+2.9 M rows ≤ 40 units and ≤ 1.5 GB.
 """
 from __future__ import annotations
 
+import argparse
+import json
+import os
 import subprocess
 import sys
 import tempfile
@@ -15,42 +23,107 @@ from pathlib import Path
 
 import numpy as np
 
-from rollaway.identify.diagnose import diagnose
-from rollaway.identify.synth import synth
+sys.path.insert(0, str(Path(__file__).resolve().parent))
+
+TESTS, DURATION_S = 8, 3600.0
+TARGETS = {288_000: (6.0, 400.0), 2_880_000: (40.0, 1536.0)}
 
 
-def data(n_forces: int, dt_s: float, effect=("lining_creep",), seed=1):
-    return synth(list(effect), seed=seed, dt_s=dt_s, hand_forces_N=tuple(np.linspace(150.0, 400.0, n_forces)))
+def write_log(rows: int, path: Path, effect: str, seed: int = 1) -> dict:
+    """8 tests × 1 h with about *rows* rows in all, written by ``rollaway synth`` in its own interpreter (so
+    that this process stays small: a child's peak RSS counts the parent's pages it started from)."""
+    from rollaway.parameters import paper
+    dt = TESTS * DURATION_S / rows
+    cmd = [sys.executable, "-m", "rollaway", "synth", "--dt-s", repr(dt), "--duration-s", repr(DURATION_S),
+           "--seed", str(seed), "--out", str(path)] + (["--effect", effect] if effect else [])
+    subprocess.run(cmd, check=True, capture_output=True, env=_env())
+    n = sum(1 for _ in open(path, encoding="utf-8")) - 1
+    return {"rows": n, "hz": 1.0 / dt, "mu_drum": paper().mu_drum}
 
 
-def timed(d, repeat=2) -> float:
-    best = np.inf
-    for _ in range(repeat):
-        t = time.perf_counter()
-        diagnose(d)
-        best = min(best, time.perf_counter() - t)
-    return best
+def _env() -> dict:
+    env = dict(os.environ)
+    env["PYTHONPATH"] = str(Path(__file__).resolve().parents[1] / "src") + os.pathsep + env.get("PYTHONPATH", "")
+    return env
 
 
-def main():
+def run_cli(path: Path, json_out: Path) -> tuple[float, float, int]:
+    """(wall s, peak RSS MB, exit code) of ``rollaway diagnose PATH`` in its own interpreter."""
+    t = time.perf_counter()
+    p = subprocess.Popen([sys.executable, "-m", "rollaway", "diagnose", str(path), "--json", str(json_out)],
+                         stdout=subprocess.DEVNULL, stderr=subprocess.PIPE, env=_env())
+    _, status, usage = os.wait4(p.pid, 0)
+    wall = time.perf_counter() - t
+    err = p.stderr.read().decode()
+    p.stderr.close()
+    code = os.waitstatus_to_exitcode(status)
+    if code:
+        print(err, file=sys.stderr)
+    return wall, usage.ru_maxrss / 1024.0, code
+
+
+def bench(rows_list, effect: str) -> None:
+    from reference import reference_unit_s
+    ref = reference_unit_s()
+    print(f"reference unit (300 000 raw mj_step): {ref:.2f} s")
+    print(f"{'rows':>10}{'Hz':>8}{'wall s':>9}{'units':>8}{'peak MB':>9}   verdict (μ_d 95 % interval, truth)")
+    with tempfile.TemporaryDirectory() as tmp:
+        for rows in rows_list:
+            path = Path(tmp) / f"log-{rows}.csv"
+            truth = write_log(rows, path, effect)
+            wall, mb, code = run_cli(path, Path(tmp) / "d.json")
+            if code:
+                print(f"{truth['rows']:>10}  diagnose failed (exit {code})")
+                continue
+            d = json.loads((Path(tmp) / "d.json").read_text())
+            lo, hi = d["refined"]["parameters"]["mu_drum"]["ci95"]
+            target = next((k for k in TARGETS if 0.9 * k <= rows <= 1.1 * k), None)
+            goal = ""
+            if target is not None:
+                units_max, mb_max = TARGETS[target]
+                goal = f"   target ≤ {units_max:g} units, ≤ {mb_max:g} MB: " + \
+                    ("met" if wall / ref <= units_max and mb <= mb_max else "MISSED")
+            cover = "covers" if lo <= truth["mu_drum"] <= hi else "MISSES"
+            print(f"{truth['rows']:>10}{truth['hz']:>8.3g}{wall:>9.2f}{wall / ref:>8.2f}{mb:>9.0f}   {d['verdict']} "
+                  f"([{lo:.5f}, {hi:.5f}] {cover} {truth['mu_drum']:g}; {d['data']['rows']} rows fitted){goal}",
+                  flush=True)
+            path.unlink()
+
+
+def scaling() -> None:
+    """In-process diagnose time against tests and rows (whole catalogue, hidden lining_creep)."""
+    from rollaway.identify.diagnose import diagnose
+    from rollaway.identify.synth import synth
+
+    def data(n_forces, dt_s):
+        return synth(["lining_creep"], seed=1, dt_s=dt_s, hand_forces_N=tuple(np.linspace(150.0, 400.0, n_forces)))
+
+    def timed(d, repeat=2):
+        best = np.inf
+        for _ in range(repeat):
+            t = time.perf_counter()
+            diagnose(d)
+            best = min(best, time.perf_counter() - t)
+        return best
     ref = timed(data(4, 300.0))
-    print(f"{'tests':>6}{'rows':>8}{'seconds':>10}{'× ref':>8}   (whole catalogue, hidden lining_creep)")
+    print(f"{'tests':>6}{'rows':>8}{'seconds':>10}{'× ref':>8}   (104-row in-process reference {ref:.2f} s)")
     for n_forces, dt in ((4, 300.0), (4, 60.0), (20, 300.0), (20, 60.0), (82, 300.0), (82, 60.0)):
         d = data(n_forces, dt)
         s = timed(d, 2 if len(d) < 3000 else 1)
         print(f"{d.n_tests:>6}{len(d):>8}{s:>10.2f}{s / ref:>8.1f}")
-    with tempfile.TemporaryDirectory() as tmp:
-        path = Path(tmp) / "big.csv"
-        data(82, 60.0).to_csv(path)
-        for effect in (("lining_creep",), ()):
-            if not effect:
-                data(82, 60.0, effect=()).to_csv(path)
-            t = time.perf_counter()
-            subprocess.run([sys.executable, "-m", "rollaway", "diagnose", str(path), "--json", str(Path(tmp) / "d.json")],
-                           check=True, capture_output=True)
-            s = time.perf_counter() - t
-            print(f"CLI diagnose, 164 tests, 10 004 rows, hidden {effect[0] if effect else 'nothing'}: {s:.2f} s "
-                  f"({s / ref:.1f}× the 104-row in-process reference {ref:.2f} s)")
+
+
+def main(argv=None):
+    ap = argparse.ArgumentParser(description=__doc__.splitlines()[0])
+    ap.add_argument("--rows", type=int, action="append", help="rows of the log (8 tests × 1 h; repeatable)")
+    ap.add_argument("--effect", default="lining_creep", help="hidden effect ('' for none)")
+    ap.add_argument("--scaling", action="store_true", help="in-process scaling with tests and rows instead")
+    a = ap.parse_args(argv)
+    if a.scaling:
+        scaling()
+        return
+    rows = a.rows or [int(TESTS * DURATION_S * hz) for hz in (0.1, 1.0, 10.0, 100.0)]
+    bench(rows, a.effect)
 
 
 if __name__ == "__main__":

@@ -20,6 +20,7 @@ from rollaway.identify.measurements import Measurements
 from rollaway.parameters import paper
 
 SAMPLING = {"1min": 60.0, "5min": 300.0, "15min": 900.0, "irregular": None}
+HIGH_RATE = {"1Hz": 1.0, "10Hz": 0.1, "100Hz": 0.01}     # bench logs as rigs write them (tests of the reduction)
 SIGMA_SB = 5.670374419e-8
 
 # name: (kind, catalogue effect the diagnosis should name or None)
@@ -41,6 +42,8 @@ EFFECTS = {
 
 
 def _times(rng, scheme: str, duration: float) -> np.ndarray:
+    if scheme in HIGH_RATE:
+        return np.round(np.arange(0.0, duration + 1e-9, HIGH_RATE[scheme]), 6)
     if SAMPLING[scheme] is not None:
         return np.arange(0.0, duration + 1e-9, SAMPLING[scheme])
     gaps = rng.uniform(60.0, 600.0, 200)

@@ -7,12 +7,11 @@ import typer
 
 from rollaway.cli import options as opt
 
-from rollaway.cli.identify_common import FORMAT_HELP, load_data, load_plugins, prepare_outputs, parse_effects, write_outputs
+from rollaway.cli.identify_common import DATA_HELP, FORMAT_HELP, columns_option, manifest_option, window_option, load_data, load_plugins, prepare_outputs, parse_effects, write_outputs
 
 
 def compare(
-    data: str = typer.Argument(..., metavar="DATA_CSV", help="measurement CSV: test_id,direction,hand_force_N,time_s,drum_temp_C,"
-                                         "torque_Nm[,ambient_C]"),
+    data: str = typer.Argument(..., metavar="DATA", help=DATA_HELP),
     params: Optional[str] = opt.params_option(),
     effect: List[str] = typer.Option([], "--effect", metavar="EFFECT", help="add an effect: NAME or NAME=param=value,... "
                                                           "(repeatable; unset parameters take typical values)"),
@@ -21,6 +20,9 @@ def compare(
     report: Optional[str] = typer.Option(None, "--report", metavar="FILE", help="write a self-contained HTML report here"),
     json_out: Optional[str] = typer.Option(None, "--json", metavar="FILE", help="write the errors and findings as JSON here"),
     fmt: str = typer.Option("text", "--format", metavar="FORMAT", help=FORMAT_HELP),
+    columns: List[str] = columns_option(),
+    manifest: Optional[str] = manifest_option(),
+    window_s: Optional[float] = window_option(),
 ) -> None:
     """Errors of the model (paper defaults unless --calibrate) on both channels, per test and overall:
     RMSE, bias, worst error; residual trends and the tests/time ranges outside the noise band."""
@@ -32,7 +34,7 @@ def compare(
     prepare_outputs(report=report, json_out=json_out)
     load_plugins(effect_file)
     effects = parse_effects(effect)
-    cmp = run(load_data(data), params, effects, calibrated=calibrated)
+    cmp = run(load_data(data, columns, manifest, window_s), params, effects, calibrated=calibrated)
     write_outputs(cmp, report=report, json_out=json_out, fmt=fmt)
 
 

@@ -7,16 +7,19 @@ import typer
 
 from rollaway.cli import options as opt
 
-from rollaway.cli.identify_common import FORMAT_HELP, load_data, load_plugins, prepare_outputs, write_outputs
+from rollaway.cli.identify_common import DATA_HELP, FORMAT_HELP, columns_option, manifest_option, window_option, load_data, load_plugins, prepare_outputs, write_outputs
 
 
 def diagnose(
-    data: str = typer.Argument(..., metavar="DATA_CSV", help="measurement CSV (see 'rollaway compare --help')"),
+    data: str = typer.Argument(..., metavar="DATA", help=DATA_HELP),
     params: Optional[str] = opt.params_option(),
     effect_file: List[str] = typer.Option([], "--effect-file", metavar="FILE", help="Python file with extra candidate effects"),
     json_out: Optional[str] = typer.Option(None, "--json", metavar="FILE", help="write the diagnosis as JSON here"),
     report: Optional[str] = typer.Option(None, "--report", metavar="FILE", help="write a self-contained HTML report here"),
     fmt: str = typer.Option("text", "--format", metavar="FORMAT", help=FORMAT_HELP),
+    columns: List[str] = columns_option(),
+    manifest: Optional[str] = manifest_option(),
+    window_s: Optional[float] = window_option(),
     save_model: Optional[str] = opt.SAVE_MODEL,
     noise_torque_Nm: Optional[float] = typer.Option(None, "--noise-torque-Nm", min=0.0, metavar="NM",
                                                     help="torque noise σ of the instrument [N·m] (default: "
@@ -43,7 +46,7 @@ def diagnose(
     check_choice(fmt, REPORT_FORMATS, "--format")
     prepare_outputs(report=report, json_out=json_out, save_model=save_model)
     load_plugins(effect_file)
-    diag = run(load_data(data), params=params, noise_torque_Nm=noise_torque_Nm or None,
+    diag = run(load_data(data, columns, manifest, window_s), params=params, noise_torque_Nm=noise_torque_Nm or None,
                noise_temp_C=noise_temp_C or None, free=free or None, fix=fix)
     write_outputs(diag, report=report, json_out=json_out, fmt=fmt)
     if check_calibration:

@@ -26,20 +26,56 @@ def parse_effects(specs) -> dict[str, dict[str, float]]:
 FORMAT_HELP = "text | json (the result, decision first, on stdout)"
 
 
-def load_data(path):
-    """Load a measurement CSV (validated) and print its notes on stderr."""
+DATA_HELP = ("bench log: a CSV or Parquet file, or a folder with one file per test (canonical columns "
+             "test_id,direction,hand_force_N,time_s,drum_temp_C,torque_Nm[,ambient_C] or mapped with --columns)")
+SMALL_CSV_BYTES = 1 << 20      # a canonical CSV up to this size is read sample by sample (the strict CSV loader)
+
+
+def columns_option():
+    import typer
+    return typer.Option([], "--columns", metavar="MAP",
+                        help="where the quantities are and in which unit: NAME=COLUMN[unit] (e.g. "
+                             "'drum_temp_C=T_drum[degF]', repeatable) or a .toml file with a [columns] table "
+                             "(default: the folder's columns.toml, if any)")
+
+
+def manifest_option():
+    import typer
+    return typer.Option(None, "--manifest", metavar="FILE",
+                        help="CSV with test_id,direction,hand_force_N per test (a folder's manifest.csv is found "
+                             "by itself)")
+
+
+def window_option():
+    import typer
+    return typer.Option(None, "--window-s", min=0.0, metavar="S",
+                        help="reduce the log to means over windows of S seconds (default: automatic for logs of "
+                             "8+ samples per window; 0: fit every sample)")
+
+
+def load_data(path, columns=(), manifest=None, window_s=None):
+    """Load bench data (validated) and print its notes on stderr: a small canonical CSV sample by sample,
+    anything else (Parquet, a folder, mapped columns, a long log) through the streaming reader."""
     from pathlib import Path
 
     import typer
 
-    from rollaway.errors import UserError
+    from rollaway.identify.columns import column_map, is_lab_format
     from rollaway.identify.measurements import load_measurements
-    if Path(path).is_dir():
-        csvs = sorted(p.name for p in Path(path).glob("*.csv"))
-        hint = f" (it holds {', '.join(csvs[:3])}{', ...' if len(csvs) > 3 else ''})" if csvs else ""
-        raise UserError(f"'{path}' is a folder; give one measurement CSV file{hint}, e.g. "
-                        f"'rollaway compare bench.csv' (make one with 'rollaway synth --out bench.csv')")
-    data = load_measurements(path)
+    p = Path(path)
+    own = p / "columns.toml"
+    notes = []
+    if not columns and p.is_dir() and own.is_file():          # a folder that carries its own column map
+        columns = [own]
+        notes.append(f"column map {own}")
+    colmap = column_map(columns)
+    streaming = bool(colmap) or manifest or window_s is not None or is_lab_format(p) or \
+        (p.is_file() and p.stat().st_size > SMALL_CSV_BYTES)
+    if streaming:
+        from rollaway.identify.sources import read_log
+        data = read_log(p, colmap, manifest, window_s, notes)
+    else:
+        data = load_measurements(path)
     for note in data.notes:
         typer.echo(f"note: {note}", err=True)
     return data

@@ -8,6 +8,7 @@ import numpy as np
 
 from rollaway.identify.calibrate import FitResult, calibrate, evaluate
 from rollaway.identify.measurements import Measurements
+from rollaway.identify.rawnoise import window_noise
 from rollaway.identify.residuals import Noise, association, excursions, noise_estimate, trend_words
 
 NOISE_BAND = 2.5   # a residual leaves the noise band when |r| > 2.5 σ
@@ -84,7 +85,8 @@ class Comparison:
                 "model": {"name": self.model_name, "calibrated": self.fit.k > 0, "effects": self.fit.effects,
                           "values": self.fit.values},
                 "noise": {k: v.sigma for k, v in self.noise.items()}, "overall": self.overall,
-                "tests": self.per_test, "excursions": self.excursions, "findings": self.words}
+                "tests": self.per_test, "excursions": self.excursions, "findings": self.words,
+                "data": {"source": self.fit.data.source, "tests": self.fit.data.n_tests, **self.fit.data.rows_info()}}
 
     def table(self) -> str:
         head = (f"{'test':<10}{'dir':<9}{'F_hb N':>7}{'T0 °C':>7} | {'torque RMSE':>11}{'bias':>8}{'worst':>8}"
@@ -122,6 +124,8 @@ def residual_channels(fit: FitResult) -> dict[str, tuple[np.ndarray, np.ndarray,
     """channel → (residual, mask of samples that are predictions, unit)."""
     rt, rq = fit.residuals()
     every = np.ones(len(rq), bool)      # T_0 is fitted: the t = 0 readings are data like the others
+    if fit.data.count is not None:      # a reduced log: its partial windows (t = 0, a test's end) are far noisier
+        every = fit.data.count >= 0.5 * np.median(fit.data.count)
     return {"torque": (rq, every, "N·m"), "temperature": (rt, every, "°C")}
 
 
@@ -135,6 +139,8 @@ def compare_fit(fit: FitResult) -> Comparison:
         noise[ch] = noise_estimate(data, values, tau, relative=ch == "torque") or Noise(
             float(np.sqrt(np.mean(r[m] ** 2))) or 1e-9, 1, reliable=False, note="no test has 3 samples: the "
             "model's RMSE stands in for the noise")
+        if data.count is not None:       # window means: compare with the noise of a window mean, σ/√n
+            noise[ch] = window_noise(noise[ch], data, values, m)
     per_test = []
     for info in data.test_info():
         rows = data.test_index == data.tests.index(info["test_id"])

@@ -28,7 +28,7 @@ from rollaway.identify.drum import DrumCalibration, calibrate_drum, predictive_c
 from rollaway.identify.export import CalibratedModelMixin
 from rollaway.identify.fitting import single_blas_thread
 from rollaway.identify.measurements import Measurements
-from rollaway.identify.noise import Noise, noise_estimate
+from rollaway.identify.noise import Noise, noise_estimate, sample_sigma
 from rollaway.identify.residuals import association, trend_words
 from rollaway.identify.selection import (BIC_THRESHOLD, Candidate, cv_score, eliminate, exchange, folds, forward_step,
                                          has_per_test, per_test_signature, structure, weighted_chi2)
@@ -69,7 +69,8 @@ class Diagnosis(CalibratedModelMixin):
         def rm(f):
             return {"rmse_torque_Nm": f.rmse_torque_Nm, "rmse_temp_C": f.rmse_temp_C, "bic": f.bic, "aic": f.aic,
                     "parameters": {k: e.as_dict() for k, e in f.estimates.items()}, **f.statistics()}
-        return {"data": {"source": self.data.source, "samples": len(self.data), "tests": self.data.n_tests},
+        return {"data": {"source": self.data.source, "samples": len(self.data), "tests": self.data.n_tests,
+                         **self.data.rows_info()},
                 "noise": {"torque_Nm": self.noise_torque.sigma, "temp_C": self.noise_temp.sigma,
                           "torque": self.noise_torque.as_dict(), "temperature": self.noise_temp.as_dict()},
                 "paper": {"rmse_torque_Nm": self.paper.rmse_torque_Nm, "rmse_temp_C": self.paper.rmse_temp_C},
@@ -162,8 +163,8 @@ def diagnose(data: Measurements, params=None, effects=None, *, noise_torque_Nm: 
     data = data.subset(np.ones(len(data), bool))          # a copy that carries the noise model
     first = calibrate(data, (), params)
     nq, nt = channel_noise(data, first, noise_torque_Nm, noise_temp_C)
-    data.torque_sigma_Nm = np.maximum(nq.at(data.torque_Nm), 1e-9)
-    data.temp_sigma_C = np.maximum(nt.at(data.drum_temp_C), 1e-9)
+    data.torque_sigma_Nm = np.maximum(sample_sigma(nq, data, data.torque_Nm), 1e-9)
+    data.temp_sigma_C = np.maximum(sample_sigma(nt, data, data.drum_temp_C), 1e-9)
     paper = evaluate(data, (), params)
     drum = calibrate_drum(data, params, free=free, fix=fix, start=first.values)
     params = drum.plan                                     # every later fit frees what the data identify

@@ -43,8 +43,17 @@ def calibrated_model(fit, data_path: str | Path | None = None, command: str = "f
     alts = fit.fit_info.get("alternatives") or []
     model._alternatives = [(w, calibrated_model(f)) for w, f in alts]
     if data_path is not None:
-        model.provenance = provenance_for(data_path, rows=len(fit.data), tests=fit.data.n_tests, command=command,
-                                          rmse={"rmse_torque_Nm": fit.rmse_torque_Nm, "rmse_temp_C": fit.rmse_temp_C})
+        folder = Path(data_path).is_dir()
+        files = sorted(f for f in Path(data_path).iterdir() if f.is_file()) if folder else [Path(data_path)]
+        model.provenance = provenance_for(files[0], rows=fit.data.rows_info()["rows_read"], tests=fit.data.n_tests,
+                                          command=command, rmse={"rmse_torque_Nm": fit.rmse_torque_Nm,
+                                                                 "rmse_temp_C": fit.rmse_temp_C})
+        if folder:          # a folder of files per test: its name, and one hash over its files (names and contents)
+            import hashlib
+
+            from rollaway.model_file import file_sha256
+            h = hashlib.sha256("".join(f"{f.name}:{file_sha256(f)}\n" for f in files).encode())
+            model.provenance.update(data_file=Path(data_path).name + "/", data_sha256=h.hexdigest())
     return model
 
 

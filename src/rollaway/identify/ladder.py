@@ -42,7 +42,8 @@ class Ladder(CalibratedModelMixin):
         return {"verdict": verdict, "effects_supported": ok, "ladder": [{"model": name, "rmse_torque_Nm": f.rmse_torque_Nm, "rmse_temp_C": f.rmse_temp_C,
                             "bic": f.bic if f.k else None, "k": f.k} for name, f in self.rungs],
                 "parameters": {k: e.as_dict() for k, e in self.final.estimates.items()},
-                "warnings": self.final.warnings}
+                "warnings": self.final.warnings,
+                "data": {"source": self.data.source, "tests": self.data.n_tests, **self.data.rows_info()}}
 
     def table(self, width: int = 30) -> str:
         top = max(f.rmse_torque_Nm for _, f in self.rungs) or 1.0

@@ -44,6 +44,8 @@ class Measurements:
     notes: list[str] = field(default_factory=list)
     torque_sigma_Nm: np.ndarray | None = None   # per-sample noise level (set by diagnose; weights the fits)
     temp_sigma_C: np.ndarray | None = None      # per-sample drum-temperature noise level (idem)
+    count: np.ndarray | None = None             # raw samples averaged into each row (None: one each)
+    reduction: object | None = None             # rows read/kept/reduced, raw-rate noise (identify.reduction)
 
     def __post_init__(self):
         self.tests = list(dict.fromkeys(self.test_id.tolist()))
@@ -72,9 +74,17 @@ class Measurements:
             first = np.flatnonzero(rows)[0]
             out.append({"test_id": t, "direction": str(self.direction[first]),
                         "hand_force_N": float(self.hand_force_N[first]),
-                        "initial_temp_C": float(self.test_initial_temp_C[i]), "samples": int(rows.sum()),
+                        "initial_temp_C": float(self.test_initial_temp_C[i]),
+                        "samples": int(rows.sum() if self.count is None else self.count[rows].sum()),
                         "duration_s": float(self.time_s[rows].max())})
         return out
+
+    def rows_info(self) -> dict:
+        """Rows read from the log, kept, and seen by the fits (after a reduction), for reports and JSON."""
+        red = self.reduction
+        if red is None:
+            return {"rows_read": len(self), "rows_kept": len(self), "rows": len(self), "window_s": None}
+        return {"rows_read": red.rows_read, "rows_kept": red.rows_kept, "rows": len(self), "window_s": red.window_s}
 
     def subset(self, mask) -> "Measurements":
         """Rows where *mask* is true (whole tests keep their T_0)."""
@@ -84,7 +94,8 @@ class Measurements:
                             None if self.ambient_C is None else self.ambient_C[m], self.source,
                             None if self.line is None else self.line[m], [],
                             None if self.torque_sigma_Nm is None else self.torque_sigma_Nm[m],
-                            None if self.temp_sigma_C is None else self.temp_sigma_C[m])
+                            None if self.temp_sigma_C is None else self.temp_sigma_C[m],
+                            None if self.count is None else self.count[m], self.reduction)
 
     def to_frame(self):
         import pandas as pd

@@ -50,13 +50,15 @@ class Noise:
     reliable: bool = True
     source: str = "data"            # "data" (pseudo-residuals) or "instrument" (given by the user)
     note: str = ""
+    mean_factor: float = 1.0        # σ of a mean of n consecutive samples is mean_factor·σ/√n (correlated noise)
 
     def at(self, level) -> np.ndarray:
         return np.sqrt(self.absolute ** 2 + (self.relative * np.asarray(level, float)) ** 2)
 
     def as_dict(self):
         return {"sigma": self.sigma, "dof": self.dof, "absolute": self.absolute, "relative": self.relative,
-                "degree": self.degree, "reliable": self.reliable, "source": self.source, "note": self.note}
+                "degree": self.degree, "reliable": self.reliable, "source": self.source, "note": self.note,
+                "mean_factor": self.mean_factor}
 
     @classmethod
     def instrument(cls, sigma: float, relative: float = 0.0) -> "Noise":
@@ -129,8 +131,27 @@ def _scale(e: np.ndarray, level: np.ndarray, relative: bool) -> tuple[float, flo
     return math.sqrt(max(a2, 0.0)), math.sqrt(max(b2, 0.0))
 
 
+def raw_rate_noise(data, values) -> Noise | None:
+    """The noise measured at the raw rate when *data* is a reduced log (:mod:`rollaway.identify.reduction`)
+    and *values* one of its channels; None otherwise (its rows are window means: their scatter is not the noise)."""
+    red = getattr(data, "reduction", None)
+    if red is None or getattr(red, "noise_torque", None) is None:
+        return None
+    return red.noise_torque if values is data.torque_Nm else red.noise_temp if values is data.drum_temp_C else None
+
+
+def sample_sigma(noise: Noise, data, level) -> np.ndarray:
+    """σ of each row of *data*: the noise model at the row's level over √(raw samples averaged into the row)."""
+    s = noise.at(level)
+    count = getattr(data, "count", None)
+    return s if count is None else s / np.sqrt(count) * np.where(count > 1, noise.mean_factor, 1.0)
+
+
 def noise_estimate(data, values: np.ndarray, time_constant_s: float, relative: bool = False) -> Noise | None:
     """Noise of one channel of *data* (any sampling, ≥ 3 samples per test); None if no window exists."""
+    raw = raw_rate_noise(data, values)
+    if raw is not None:
+        return raw
     fits = []
     for p in range(1, MAX_DEGREE + 1):
         e, level, w, c = pseudo_residuals(data.time_s, values, data.test_index, time_constant_s, p)
