@@ -53,7 +53,7 @@ def diagnose(
         from rollaway.identify.calibration_check import check_calibration as check, words
         typer.echo(words(check(diag, check_calibration)), err=fmt == "json")
     if save_model:
-        typer.echo(f"model: {diag.save_model(save_model)} (your drum + the verdict's effects; use it with "
+        typer.echo(f"model: {diag.save_model(save_model, data)} (your drum + the verdict's effects; use it with "
                    f"--params)", err=fmt == "json")
 
 

@@ -40,7 +40,7 @@ def fit(
     ladder = run(d, list(effects), params=params, start=start)
     write_outputs(ladder, report=report, json_out=json_out, plot=plot, fmt=fmt)
     if save_model:
-        typer.echo(f"model: {ladder.save_model(save_model)} (use it with --params)")
+        typer.echo(f"model: {ladder.save_model(save_model, data)} (use it with --params)")
 
 
 def register(app: typer.Typer) -> None:

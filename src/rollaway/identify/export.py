@@ -68,9 +68,9 @@ def save_fit(fit, path: str | Path, data_path: str | Path | None, command: str) 
 
 
 def data_file(data) -> Path | None:
-    """The file *data* (:class:`~rollaway.identify.measurements.Measurements`) was read from, if it still exists."""
+    """The file or folder *data* (:class:`~rollaway.identify.measurements.Measurements`) was read from, if it still exists."""
     p = Path(str(getattr(data, "source", "")))
-    return p if p.is_file() else None
+    return p if p.exists() else None
 
 
 class CalibratedModelMixin:
@@ -88,7 +88,8 @@ class CalibratedModelMixin:
         fit = self._calibrated_fit()
         return calibrated_model(fit, data_file(fit.data), self._command)
 
-    def save_model(self, path: str | Path) -> Path:
-        """Write :attr:`model` as a model file (TOML) for ``DrumModel(path)`` or ``--params path``; returns the path."""
+    def save_model(self, path: str | Path, data_path: str | Path | None = None) -> Path:
+        """Write :attr:`model` as a model file (TOML) for ``DrumModel(path)`` or ``--params path``; returns the path.
+        *data_path*: the file or folder the data came from (default: the data's source, if it exists)."""
         fit = self._calibrated_fit()
-        return save_fit(fit, path, data_file(fit.data), self._command)
+        return save_fit(fit, path, data_path if data_path is not None else data_file(fit.data), self._command)
