@@ -9,7 +9,7 @@ from rollaway.identify.diagnose import diagnose
 from rollaway.identify.model import BenchModel
 from rollaway.identify.noise import noise_estimate, sample_sigma
 from rollaway.identify.reduction import Reducer, reduce_measurements
-from rollaway.identify.sources import Batch, Text
+from rollaway.identify.batch import Batch, Text
 from rollaway.identify.synth import synth
 
 CANDIDATES = ["lining_creep", "cable_relaxation", "friction_temperature"]

@@ -363,7 +363,7 @@ def _check_numbers(b, q: str, x: np.ndarray, problems: list[str], lower: bool = 
 
 def reduce_measurements(data: Measurements, window_s: float | None = None) -> Measurements:
     """The reduction of measurements already in memory (tests in file order; for tests and comparisons)."""
-    from rollaway.identify.sources import Batch, Text
+    from rollaway.identify.batch import Batch, Text
     red = Reducer(keep_raw=len(data))
     ids = list(dict.fromkeys(data.test_id.tolist()))
     dirs = sorted(set(data.direction.tolist()))

@@ -23,6 +23,7 @@ import numpy as np
 
 from rollaway.physics.drum import DIRECTIONS
 from rollaway.errors import UserError, suggest
+from rollaway.identify.batch import Batch, Text  # noqa: F401  (re-exported: the readers' unit of work)
 from rollaway.identify.columns import CANONICAL, TEXT, ColumnMap, Resolved, Spec, _find, unit_label
 
 SUFFIXES = {".csv": "csv", ".parquet": "parquet", ".pq": "parquet", ".mf4": "mdf", ".mdf": "mdf"}
@@ -31,45 +32,6 @@ BLOCK_BYTES = 1 << 20         # CSV block (≈ 25 000 rows): pyarrow keeps ~30 b
 #                                 the reader to ~40 MB (16 MB blocks: ~500 MB); larger blocks are not faster here
 BATCH_ROWS = 262_144            # Parquet rows per batch
 DIALECT = (",", ".")            # CSV delimiter and decimal mark
-
-
-@dataclass
-class Text:
-    """A text column of a batch: per-row codes into *names* (−1: empty)."""
-
-    codes: np.ndarray
-    names: list[str]
-
-    @classmethod
-    def constant(cls, value: str, n: int) -> "Text":
-        return cls(np.zeros(n, np.int64), [value])
-
-
-@dataclass
-class Batch:
-    """Consecutive rows of one file in canonical quantities and SI units."""
-
-    where: str                    # the file, for messages
-    first: int                    # line (CSV) or row (Parquet) number of the first row
-    word: str                     # "line" or "row"
-    test_id: Text
-    direction: Text | None
-    hand_force_N: np.ndarray | None
-    time_s: np.ndarray
-    drum_temp_C: np.ndarray
-    torque_Nm: np.ndarray
-    ambient_C: np.ndarray | None
-    columns: dict[str, Resolved]  # quantity → the file's column (for messages)
-
-    def __len__(self) -> int:
-        return len(self.time_s)
-
-    def at(self, i: int) -> str:
-        return f"{self.where}, {self.word} {self.first + int(i)}"
-
-    def column(self, quantity: str) -> str:
-        r = self.columns.get(quantity)
-        return r.describe() if r else f"'{quantity}'"
 
 
 @dataclass
