@@ -24,6 +24,7 @@ import numpy as np
 
 from rollaway.effects import available_effects, get_effect
 from rollaway.identify.calibrate import FitResult, calibrate, evaluate
+from rollaway.identify.coarse import MAX_WINDOW_S, coarsen
 from rollaway.identify.drum import DrumCalibration, calibrate_drum, predictive_covariance, recheck
 from rollaway.identify.export import CalibratedModelMixin
 from rollaway.identify.fitting import single_blas_thread
@@ -165,6 +166,10 @@ def diagnose(data: Measurements, params=None, effects=None, *, noise_torque_Nm: 
     nq, nt = channel_noise(data, first, noise_torque_Nm, noise_temp_C)
     data.torque_sigma_Nm = np.maximum(sample_sigma(nq, data, data.torque_Nm), 1e-9)
     data.temp_sigma_C = np.maximum(sample_sigma(nt, data, data.drum_temp_C), 1e-9)
+    full, data = data, coarsen(data)                      # selection on a coarser copy of a dense log
+    if data is not full:
+        data.torque_sigma_Nm = np.maximum(sample_sigma(nq, data, data.torque_Nm), 1e-9)
+        data.temp_sigma_C = np.maximum(sample_sigma(nt, data, data.drum_temp_C), 1e-9)
     paper = evaluate(data, (), params)
     drum = calibrate_drum(data, params, free=free, fix=fix, start=first.values)
     params = drum.plan                                     # every later fit frees what the data identify
@@ -269,11 +274,20 @@ def diagnose(data: Measurements, params=None, effects=None, *, noise_torque_Nm: 
                       + (f"  {', '.join(dropped)} only absorbed part of this form mismatch and is not kept."
                          if dropped else ""))
     refined = recheck(drum, data, refined, [e["effect"] for e in selected]) if selected else refined
+    misfit = remaining or any(e["form"] != "exact" for e in selected)
+    pool = [base] + [c.fit for c in first_cands]
+    if data is not full:                                  # the chosen model, refitted on every row
+        _predictive(data, refined, pool, len(selected), drum, misfit)
+        alts, pool = refined.fit_info.get("alternatives", []), []
+        refined = calibrate(full, refined.effects, params, start=refined.values)
+        refined.fit_info["alternatives"] = alts
+        ev.append(f"Selection ran on {len(data)} rows (consecutive rows of each test merged, windows ≤ "
+                  f"{MAX_WINDOW_S:g} s); the chosen model was refitted on all {len(full)} rows.")
+        data = full
     drum.update(refined)
     refined.covariance = predictive_covariance(refined, drum.fixed_priors())
     refined.fit_info["calibration"] = drum.record()
-    _predictive(data, refined, [base] + [c.fit for c in first_cands], len(selected), drum,
-                misfit=remaining or any(e["form"] != "exact" for e in selected))
+    _predictive(data, refined, pool, len(selected), drum, misfit)
     return Diagnosis(data, paper, base, nq, nt, first_cands, verdict, indist if verdict != "none" else [], refined,
                      remaining, struct, base_cv, ev, selected, steps, shape, drum)
 
@@ -311,11 +325,13 @@ def _predictive(data, refined: FitResult, pool: list[FitResult], n_effects: int,
     its model error is widened by :data:`rollaway.identify.bands.MISFIT_INFLATION`."""
     from rollaway.identify.bands import COMPETING_BIC, alternatives, model_error, validity
     from rollaway.predictive import record
+    val = validity(data)
+    refined.fit_info["predictive"] = record(model_error(refined, misfit), val)
+    if not pool:                  # the alternatives were weighed on the selection's rows (already attached)
+        return
     comp = [f for f in pool if f is not refined and f.jacobian is not None and len(f.effects) <= 1
             and f.bic - refined.bic < COMPETING_BIC] if n_effects <= 1 else []
     mix = alternatives(refined, comp)
-    val = validity(data)
-    refined.fit_info["predictive"] = record(model_error(refined, misfit), val)
     alts = []
     for w, f in mix:
         if f is refined:
