@@ -82,7 +82,10 @@ class Diagnosis(CalibratedModelMixin):
                 "refined": {"effects": self.refined.effects, **rm(self.refined)},
                 "remaining_structure": self.remaining_structure, "structure": self.structure,
                 "steps": self.steps, "shape": self.shape, "evidence": self.evidence,
-                "drum": None if self.drum is None else self.drum.as_dict()}
+                "drum": None if self.drum is None else self.drum.as_dict(),
+                "predictive": {**(self.refined.fit_info.get("predictive") or {}),
+                               "alternatives": [{"effects": f.effects, "weight": w}
+                                                for w, f in self.refined.fit_info.get("alternatives") or []]}}
 
     def to_json(self, path=None) -> str:
         text = json.dumps(to_jsonable(self.as_dict()), indent=2)

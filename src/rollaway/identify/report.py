@@ -306,6 +306,22 @@ def diagnosis_report(diag, path) -> None:
                           for n, e in drum.entries.items()])
                  + "<p class='note'>Fixed and untested parameters stay at their assumed values; their assumed spread "
                    "(in brackets in the note) is carried into the uncertainty bands of the saved model.</p>")
+    pred = getattr(diag, "refined", None) and diag.refined.fit_info.get("predictive")
+    if pred:
+        alts = diag.refined.fit_info.get("alternatives") or []
+        rows = [["model error (leave-one-test-out, relative torque, 1σ)",
+                 f"{pred['model_error_rel_sd']:.3%} (Student-t, {pred['model_error_dof']} dof)"],
+                ["tested hand force [N]", "{:g} – {:g}".format(*pred["tested_hand_force_N"])],
+                ["tested T_0 [°C]", "{:.0f} – {:.0f}".format(*pred["tested_initial_temp_C"])],
+                ["tested hold [s]", f"{pred['tested_duration_s']:g}"],
+                ["tested directions", ", ".join(pred["tested_directions"])],
+                ["competing effect sets (pseudo-BMA weight)",
+                 ", ".join(f"{' + '.join(f.effects) or 'no effect'} ({w:.2f})" for w, f in alts) or "none"]]
+        body += ("<h2>Predictive record of the saved model</h2>" + table(["", "value"], rows)
+                 + "<p class='note'>hold/check/sweep/chart --uncertainty draw parameters, these competing effect "
+                   "sets by weight and a model error ε (torque × (1 + ε)); a question outside the tested range is "
+                   "flagged and widens ε. Each answer reports the share of its band that each part contributes."
+                   "</p>")
     body += ("<h2>Candidates, best first</h2>"
              + table(["effect", "ΔBIC", "torque RMSE [N·m]", "temp. RMSE [°C]", "leave-one-test-out score [–]",
                       "held-out tests predicted better"], _candidate_rows(diag))
