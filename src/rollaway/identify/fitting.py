@@ -30,7 +30,7 @@ from rollaway.identify.measurements import Measurements
 from rollaway.identify.model import INITIAL_TEMP, BenchModel
 
 MAX_OUTER = 4
-MAX_ITERATIONS = 40          # Levenberg–Marquardt iterations per pass (a fit that needs more is degenerate)
+MAX_ITERATIONS = 25          # Levenberg–Marquardt iterations per pass (a fit that needs more is degenerate)
 _single_thread = False
 
 

@@ -237,7 +237,8 @@ def exchange(data, params, names, chosen, current, struct, nq, nt, rounds: int =
                 if new in chosen or (has_per_test(new) and not per_test_ok):
                     continue
                 trial = chosen[:i] + [new] + chosen[i + 1:]
-                fit = calibrate(data, trial, held, start=current.values, statistics=False)
+                fit = calibrate(data, trial, held, start=current.values, statistics=False,
+                                max_iterations=SCREEN_ITERATIONS)
                 if fit.bic + penalty < current.bic - 2.0 and (best is None or fit.bic < best[2].bic):
                     best = (i, new, fit)
         if best is None:
