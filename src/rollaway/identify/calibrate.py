@@ -20,7 +20,7 @@ import math
 from dataclasses import dataclass, field
 
 import numpy as np
-from scipy import stats
+from scipy import special
 
 from rollaway.identify.fitting import Problem, single_blas_thread
 from rollaway.identify.measurements import Measurements
@@ -231,7 +231,7 @@ def _result(model, data, sol, prob, names, families, statistics=True) -> FitResu
         se = np.sqrt(np.clip(np.diag(cov), 0, None))
         with np.errstate(invalid="ignore", divide="ignore"):
             corr = cov / np.outer(se, se)
-        tcrit = stats.t.ppf(0.975, max(2 * n - p_t - p_q, 1))
+        tcrit = special.stdtrit(max(2 * n - p_t - p_q, 1), 0.975)
         for i, name in enumerate(names):
             lo, hi = model.bounds(name)
             v = float(vals[name])

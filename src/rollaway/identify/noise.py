@@ -22,11 +22,11 @@ import math
 from dataclasses import dataclass
 
 import numpy as np
-from scipy import optimize, stats
+from scipy import optimize, special
 
 CLIP = 3.5                 # values beyond ±3.5 σ are outliers (a spike, the samples around a step)
 # E[Z²·1(|Z| < c)] for standard normal Z: keeps the trimmed mean square Gaussian-consistent
-CLIP_GAUSS = float(1 - 2 * (CLIP * stats.norm.pdf(CLIP) + stats.norm.sf(CLIP)))
+CLIP_GAUSS = float(1 - 2 * (CLIP * (math.exp(-0.5 * CLIP * CLIP) / math.sqrt(2 * math.pi)) + special.ndtr(-CLIP)))
 MAX_DEGREE = 4
 MIN_DOF = 10               # fewer effective combinations: the estimate is not reliable
 CURVATURE_P = 0.01         # significance of "the next degree is smaller"
@@ -169,13 +169,13 @@ def noise_estimate(data, values: np.ndarray, time_constant_s: float, relative: b
     k, note, reliable = 0, "", True
     while k + 1 < len(fits):
         (_, _, _, s0, d0), (_, _, _, s1, d1) = fits[k], fits[k + 1]
-        if d1 < 3 or (s0 / s1) ** 2 <= stats.f.ppf(1 - CURVATURE_P, d0, d1):
+        if d1 < 3 or (s0 / s1) ** 2 <= special.fdtri(d0, d1, 1 - CURVATURE_P):
             break
         k += 1
     p, a, b, sigma, dof = fits[k]
     if k + 1 == len(fits) and k > 0 and len(fits) > 1:
         (_, _, _, s_prev, d_prev) = fits[k - 1]
-        if (s_prev / sigma) ** 2 > stats.f.ppf(1 - CURVATURE_P, d_prev, dof) and p < MAX_DEGREE:
+        if (s_prev / sigma) ** 2 > special.fdtri(d_prev, dof, 1 - CURVATURE_P) and p < MAX_DEGREE:
             reliable = False
             note = (f"the signal still curves between samples at the highest local degree the sampling allows "
                     f"({p}); σ = {sigma:.3g} is an upper bound")

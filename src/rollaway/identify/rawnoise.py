@@ -18,7 +18,7 @@ import math
 from dataclasses import replace
 
 import numpy as np
-from scipy import optimize, stats
+from scipy import optimize, special
 
 from rollaway.identify.noise import Noise, sample_sigma
 
@@ -92,9 +92,9 @@ def dispersion(windows, nq: Noise, nt: Noise) -> tuple[float, float]:
             out.append(1.0)
             continue
         z2 = np.concatenate(z2)
-        kappa2 = float(np.median(z2)) / float(stats.chi2.ppf(0.5, 1))       # median-unbiased for χ²₁
+        kappa2 = float(np.median(z2)) / float(special.chdtri(1, 0.5))       # median-unbiased for χ²₁
         dof = z2.size / (2.0 * ORDER)          # overlapping combinations, the median's efficiency: conservative
-        p = float(stats.f.sf(kappa2, dof, max(noise.dof, 1.0)))
+        p = float(special.fdtrc(dof, max(noise.dof, 1.0), kappa2))
         out.append(math.sqrt(kappa2) if kappa2 > 1.0 and p < DISPERSION_P else 1.0)
     return out[0], out[1]
 

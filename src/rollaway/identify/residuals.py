@@ -10,7 +10,7 @@ from __future__ import annotations
 import math
 
 import numpy as np
-from scipy import stats
+from scipy import special
 
 from rollaway.identify.measurements import Measurements
 from rollaway.identify.noise import CLIP, Noise, clip_square, noise_estimate  # noqa: F401  (re-exported)
@@ -32,7 +32,7 @@ def _anova(z: np.ndarray, groups: np.ndarray) -> tuple[float, int, int, float]:
     if df2 < 1 or within <= 0:
         return 0.0, df1, max(df2, 1), 1.0
     f = (between / df1) / (within / df2)
-    return f, df1, df2, float(stats.f.sf(f, df1, df2))
+    return f, df1, df2, float(special.fdtrc(df1, df2, f))
 
 
 def time_bins(t: np.ndarray) -> np.ndarray:
@@ -65,7 +65,7 @@ def structure_tests(data: Measurements, residual: np.ndarray, noise: Noise, k: f
     dof_r = max(n - k, 1.0)
     ratio = float(clip_square(residual[m] / sig[m]).sum()) / dof_r
     kurt = float(np.mean(z ** 4) / max(np.mean(z ** 2), 1e-300) ** 2)
-    p_var = float(stats.f.sf(ratio, dof_r * 2.0 / max(kurt - 1.0, 0.5), max(noise.dof, 1.0)))
+    p_var = float(special.fdtrc(dof_r * 2.0 / max(kurt - 1.0, 0.5), max(noise.dof, 1.0), ratio))
     order = np.lexsort((data.time_s[m], ti))
     zs, ts = z[order], ti[order]
     same = ts[1:] == ts[:-1]
@@ -73,7 +73,7 @@ def structure_tests(data: Measurements, residual: np.ndarray, noise: Noise, k: f
     den = float(z @ z)
     pairs = int(same.sum())
     rho = num / den if den > 0 else 0.0
-    p_ac = float(stats.norm.sf(rho * math.sqrt(max(pairs, 1))))
+    p_ac = float(special.ndtr(-rho * math.sqrt(max(pairs, 1))))
     f_off, d1, d2, p_off = _anova(z, ti)
     f_t, e1, e2, p_time = _anova(z, time_bins(data.time_s[m]))
     tests = {"excess_variance": {"ratio": ratio, "p": p_var}, "autocorrelation": {"lag1": rho, "p": p_ac},

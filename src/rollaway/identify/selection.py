@@ -19,7 +19,7 @@ from rollaway.identify.residuals import structure_tests
 BIC_THRESHOLD = -10.0        # "very strong" evidence (Kass & Raftery 1995)
 CV_TOP = 3                   # cross-validate at most this many candidates per step
 SCREEN_ITERATIONS = 6        # Levenberg–Marquardt iterations of a candidate's ranking fit
-REFIT_TOP = 3                # screened candidates refitted with the brake parameters free, per step
+REFIT_TOP = 2                # screened candidates refitted with the brake parameters free, per step
 LOO_TESTS = 10               # K-fold by test: leave-one-test-out up to 10 tests, else FOLDS folds
 FOLDS = 5
 
