@@ -97,3 +97,18 @@ def test_least_force_curves_of_a_model_with_clamp_loss_lie_above_the_paper_model
                                 duration_s=3600.0, initial_temp_C=200.0)
     ok = np.isfinite(curves[("paper", "uphill")])
     assert np.all(curves[("creep", "uphill")][ok] > curves[("paper", "uphill")][ok])
+
+
+def test_calibration_table_is_validated(tmp_path):
+    import pytest
+    from rollaway.errors import UserError
+    from rollaway.model import DrumModel
+    good = tmp_path / "good.toml"
+    good.write_text('extends = "paper"\n[calibration]\nmu_drum = "fitted: 0.38 ± 0.01"\n', encoding="utf-8")
+    assert DrumModel(good).calibration == {"mu_drum": "fitted: 0.38 ± 0.01"}
+    for body, words in (('mu_drm = "fitted"', "unknown key 'calibration.mu_drm'"),
+                        ("mu_drum = 3", "must be text")):
+        bad = tmp_path / "bad.toml"
+        bad.write_text(f'extends = "paper"\n[calibration]\n{body}\n', encoding="utf-8")
+        with pytest.raises(UserError, match=words):
+            DrumModel(bad)

@@ -2,7 +2,8 @@
 
 A fitted covariance says how well the data pin the parameters *of the chosen model*.  The road
 question also depends on which effects were chosen and on how wrong the chosen forms are.
-:func:`predictive_record` adds both, from the bench data themselves:
+:func:`model_error`, :func:`alternatives` and :func:`validity` measure both, from the bench data themselves
+(:func:`rollaway.predictive.record` turns them into the model file's ``[predictive]`` table):
 
 * **model error** — every test is predicted by the model calibrated on the other tests
   (linearised leave-one-test-out, :func:`rollaway.identify.selection.loto_residuals`).  Each
@@ -104,9 +105,4 @@ def sized(fit: FitResult) -> bool:
     return True
 
 
-def predictive_record(selected: FitResult, competitors: list[FitResult] = ()) -> dict:
-    """The model file's ``[predictive]`` record (without the alternative models themselves)."""
-    return {"model_error": model_error(selected), "validity": validity(selected.data)}
-
-
-__all__ = ["alternatives", "model_error", "predictive_record", "validity"]
+__all__ = ["alternatives", "model_error", "sized", "validity"]
