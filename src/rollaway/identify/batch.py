@@ -1,4 +1,4 @@
-"""The unit of work between the bench-log readers (:mod:`.sources`, :mod:`.mdf`) and the reduction
+"""The unit of work between the bench-log readers (:mod:`.sources`, :mod:`.asam_mdf`) and the reduction
 (:mod:`.reduction`): consecutive rows of one file, already in canonical quantities and SI units."""
 from __future__ import annotations
 

@@ -152,8 +152,8 @@ def plan(path, colmap: ColumnMap | None = None, manifest: str | None = None) -> 
         kind = SUFFIXES[f.suffix.lower()]
         channels, dialect = None, DIALECT
         if kind == "mdf":
-            from rollaway.identify import mdf
-            header, names, master = mdf.header(f)
+            from rollaway.identify import asam_mdf
+            header, names, master = asam_mdf.header(f)
             hline, channels = 0, (names, master)
             if "time_s" not in colmap.specs and master is not None and "time_s" not in header:
                 colmap = ColumnMap({**colmap.specs, "time_s": Spec(master)}, colmap.origin)
@@ -222,7 +222,7 @@ def _check_units(plans: list[FilePlan], folder: Path) -> None:
 def batches(fp: FilePlan):
     """The rows of one planned file as :class:`Batch` es (SI units)."""
     if fp.kind == "mdf":
-        from rollaway.identify.mdf import record_batches
+        from rollaway.identify.asam_mdf import record_batches
         first = 1
         for rb in record_batches(fp.path, [r.header for r in fp.columns.values()], *fp.channels):
             yield _batch(fp, rb, first, "row")
