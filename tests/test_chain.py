@@ -25,3 +25,11 @@ def test_model_methods_are_the_chain_and_overrides_broadcast():
     s = chain.evaluate(m, 0.0, 300.0, "uphill", values={"shoe_arm_ratio": ratios}).torque_Nm
     assert s.shape == (3,) and s[0] > s[1] > s[2]          # a longer friction arm takes more facing uphill
     assert np.isclose(s[1], a[0], rtol=1e-8)
+
+
+def test_drum_temperature_runs_a_temperature_hook_without_a_given_state():
+    m = DrumModel("paper", effects=["radiation_cooling"], values={"radiation_cooling.emissivity": 0.8})
+    t = np.array([0.0, 600.0, 3600.0])
+    hot = chain.drum_temperature(m, t)
+    plain = chain.drum_temperature(DrumModel("paper"), t)
+    assert hot[0] == plain[0] and np.all(hot[1:] < plain[1:])      # radiation cools faster

@@ -59,7 +59,7 @@ def direction_to_sign(direction) -> np.ndarray:
     return drum.direction_sign(direction)
 
 
-def state(model, time_s, hand_force_N, direction="downhill", *, mu_drum=None, initial_temp_C=None,
+def model_state(model, time_s, hand_force_N, direction="downhill", *, mu_drum=None, initial_temp_C=None,
           ambient_C=None, heat_transfer_W_m2K=None, test_index=None, test_ids=None) -> ModelState:
     """Inputs of the chain broadcast to one shape, as the effect hooks see them."""
     p = model.params
@@ -92,7 +92,7 @@ def drum_temperature(model, time_s, *, initial_temp_C=None, ambient_C=None, heat
     hooks = [(e, v) for e, v in model.active(values) if e.touches_temperature()]
     if not hooks:
         return temp
-    st = state or state(model, time_s, state_kw.pop("hand_force_N", 0.0), state_kw.pop("direction", "downhill"),
+    st = state or model_state(model, time_s, state_kw.pop("hand_force_N", 0.0), state_kw.pop("direction", "downhill"),
                              initial_temp_C=t0, ambient_C=amb, heat_transfer_W_m2K=h, **state_kw)
     temp = np.broadcast_to(temp, st.time_s.shape)
     for e, v in hooks:
@@ -163,7 +163,7 @@ def unenergised_force(model, u6, dT, lining_modulus_Pa=None, gap_m=None):
 def _with_effects(model, active, time_s, hand_force_N, direction, mu_drum, gap_m, initial_temp_C, ambient_C,
                   heat_transfer_W_m2K, test_index, values, drum_temp_C, test_ids=None, brake=None) -> BrakeSeries:
     p = model.params
-    st = state(model, time_s, hand_force_N, direction, mu_drum=mu_drum, initial_temp_C=initial_temp_C,
+    st = model_state(model, time_s, hand_force_N, direction, mu_drum=mu_drum, initial_temp_C=initial_temp_C,
                     ambient_C=ambient_C, heat_transfer_W_m2K=heat_transfer_W_m2K, test_index=test_index,
                     test_ids=test_ids)
     shape = st.time_s.shape
@@ -171,7 +171,7 @@ def _with_effects(model, active, time_s, hand_force_N, direction, mu_drum, gap_m
         shape = np.broadcast_shapes(shape, *(np.shape(x) for x in v.values()))
     shape = np.broadcast_shapes(shape, *(np.shape(x) for x in (brake or {}).values()))   # so may calibrated ones
     if shape != st.time_s.shape:
-        st = state(model, *(np.broadcast_to(a, shape) for a in (st.time_s, st.hand_force_N, st.sign)),
+        st = model_state(model, *(np.broadcast_to(a, shape) for a in (st.time_s, st.hand_force_N, st.sign)),
                         mu_drum=st.mu_drum, initial_temp_C=np.broadcast_to(st.initial_temp_C, shape),
                         ambient_C=np.broadcast_to(st.ambient_C, shape),
                         heat_transfer_W_m2K=st.heat_transfer_W_m2K,
@@ -217,5 +217,5 @@ def _with_effects(model, active, time_s, hand_force_N, direction, mu_drum, gap_m
                        lining_temp_C=b(lining))
 
 
-__all__ = ["BrakeSeries", "CHAIN_OVERRIDES", "direction_to_sign", "drum_temperature", "evaluate", "state",
+__all__ = ["BrakeSeries", "CHAIN_OVERRIDES", "direction_to_sign", "drum_temperature", "evaluate", "model_state",
            "unenergised_force"]

@@ -209,8 +209,8 @@ class DrumModel:
 
     # -- the chain: rollaway.chain, step by step --------------------------------------------
     def state(self, time_s, hand_force_N, direction="downhill", **kw) -> ModelState:
-        """Inputs of the chain broadcast to one shape, as the effect hooks see them (:func:`rollaway.chain.state`)."""
-        return chain.state(self, time_s, hand_force_N, direction, **kw)
+        """Inputs of the chain broadcast to one shape, as the effect hooks see them (:func:`rollaway.chain.model_state`)."""
+        return chain.model_state(self, time_s, hand_force_N, direction, **kw)
 
     def drum_temperature(self, time_s, **kw) -> np.ndarray:
         """Drum temperature, eq. (10) plus the effects' hooks [°C] (:func:`rollaway.chain.drum_temperature`)."""
