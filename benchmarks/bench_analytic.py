@@ -43,7 +43,7 @@ def main() -> None:
     ap.add_argument("--full", action="store_true", help="also time the 2e6-point sweep through the CLI")
     args = ap.parse_args()
 
-    from rollaway.scenario import preset_scenarios
+    from rollaway.hold.scenario import preset_scenarios
     from rollaway.sweep.analytic import analytic_pass
     from rollaway.sweep.spec import grid_spec, point_ids
 

@@ -32,7 +32,7 @@ TARGETS = {288_000: (6.0, 400.0), 2_880_000: (40.0, 1536.0)}
 def write_log(rows: int, path: Path, effect: str, seed: int = 1) -> dict:
     """8 tests × 1 h with about *rows* rows in all, written by ``rollaway synth`` in its own interpreter (so
     that this process stays small: a child's peak RSS counts the parent's pages it started from)."""
-    from rollaway.parameters import paper
+    from rollaway.model.parameters import paper
     dt = TESTS * DURATION_S / rows
     cmd = [sys.executable, "-m", "rollaway", "synth", "--dt-s", repr(dt), "--duration-s", repr(DURATION_S),
            "--seed", str(seed), "--out", str(path)] + (["--effect", effect] if effect else [])

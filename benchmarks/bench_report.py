@@ -40,7 +40,7 @@ def main(argv=None) -> int:
 
     from rollaway.identify.diagnose import diagnose
     from rollaway.identify.ladder import Ladder
-    from rollaway.identify.measurements import load_measurements
+    from rollaway.bench.measurements import load_measurements
     from rollaway.identify.report import diagnosis_report
     from rollaway.identify.synth import synth
     unit = reference_unit_s()

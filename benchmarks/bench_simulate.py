@@ -16,7 +16,7 @@ import argparse
 import sys
 from pathlib import Path
 
-from rollaway.scenario import load_scenario
+from rollaway.hold.scenario import load_scenario
 from rollaway.sim import simulate
 
 ROOT = Path(__file__).resolve().parents[1]

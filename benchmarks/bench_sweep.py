@@ -35,7 +35,7 @@ def main() -> None:
     from reference import reference_unit_s
     unit = reference_unit_s()
     t_import = time.perf_counter()
-    from rollaway.scenario import preset_scenarios
+    from rollaway.hold.scenario import preset_scenarios
     from rollaway.sweep import grid_spec, run_sweep
     import sys
     sys.path.insert(0, os.path.dirname(os.path.abspath(__file__)))

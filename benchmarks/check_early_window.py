@@ -22,7 +22,7 @@ sys.path.insert(0, str(Path(__file__).resolve().parent))
 
 def band_points(n: int, rng) -> list:
     from bench_sweep import GRID
-    from rollaway.scenario import preset_scenarios
+    from rollaway.hold.scenario import preset_scenarios
     from rollaway.sweep import grid_spec
     from rollaway.sweep.analytic import analytic_pass, point_changes
     from rollaway.sweep.runner import select_for_simulation
@@ -34,7 +34,7 @@ def band_points(n: int, rng) -> list:
 
 def combined_points(n: int, rng) -> list:
     from rollaway.hold import min_brake_margin, tyre_adhesion_margin
-    from rollaway.scenario import preset_scenarios
+    from rollaway.hold.scenario import preset_scenarios
     base = preset_scenarios("fmvss135")[0].replace(duration_s=30.0, initial_drum_temp_C=27.0)
     out = []
     for _ in range(n):

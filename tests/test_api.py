@@ -43,8 +43,8 @@ def test_hold_package_is_still_importable_and_callable():
 
 
 def test_drum_model_from_a_file_keeps_effects_and_covariance_and_adds_more(tmp_path):
-    from rollaway.model import Covariance
-    from rollaway.model_file import save_model
+    from rollaway.model.drum_model import Covariance
+    from rollaway.model.model_file import save_model
     m = rollaway.DrumModel("paper", effects=["lining_creep"], values={"lining_creep.relaxed_fraction": 0.1},
                            covariance=Covariance(("mu_drum",), np.array([[1e-4]])))
     path = save_model(m, tmp_path / "m.toml")

@@ -37,4 +37,4 @@ def test_docs_build_executes_the_tutorials_and_documents_drum_model(tmp_path):
     for name in ("regulation-check", "mujoco-rollaway", "sweep-design-chart", "bench-to-road"):
         page = (out / "tutorials" / f"{name}.html").read_text(encoding="utf-8")
         assert "data:image/png;base64" in page or "data:image/gif;base64" in page, name
-    assert 'id="rollaway.model.DrumModel"' in (out / "api.html").read_text(encoding="utf-8")
+    assert 'id="rollaway.model.drum_model.DrumModel"' in (out / "api.html").read_text(encoding="utf-8")

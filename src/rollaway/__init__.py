@@ -17,14 +17,18 @@ required_torque``); calling them calls the API functions.
 """
 __version__ = "0.1.0"
 
+from rollaway import _moved
+
+_moved.install()        # old import paths of the previous release still work, with a DeprecationWarning
+
 _LAZY = {
     # the API: one function per job
-    "DrumModel": "rollaway.model", "load_model": "rollaway.model", "HoldVerdict": "rollaway.hold",
+    "DrumModel": "rollaway.model.drum_model", "load_model": "rollaway.model.drum_model", "HoldVerdict": "rollaway.hold",
     "simulate": "rollaway.api", "check": "rollaway.api", "load_measurements": "rollaway.api",
     "diagnose": "rollaway.api", "fit": "rollaway.api",
     # the paper's chain as plain functions, and parameter sets
-    "BrakeSeries": "rollaway.brake", "drum_brake": "rollaway.brake", "BrakeParameters": "rollaway.parameters",
-    "load_parameters": "rollaway.parameters", "paper": "rollaway.parameters",
+    "BrakeSeries": "rollaway.model.brake", "drum_brake": "rollaway.model.brake", "BrakeParameters": "rollaway.model.parameters",
+    "load_parameters": "rollaway.model.parameters", "paper": "rollaway.model.parameters",
 }
 _CALLABLE_PACKAGES = ("hold", "sweep")     # packages that are also the API functions of the same name
 

@@ -26,7 +26,7 @@ from pathlib import Path
 
 from rollaway.errors import UserError, read_toml
 from rollaway.hold import HoldVerdict, analytic_verdict
-from rollaway.model import DrumModel, as_model
+from rollaway.model.drum_model import DrumModel, as_model
 
 __all__ = ["DrumModel", "HoldVerdict", "check", "diagnose", "fit", "hold", "load_measurements",
            "simulate", "sweep"]
@@ -83,18 +83,18 @@ def hold(model="paper", *, grade_pct: float, hand_force_N: float, direction: str
         return v
     from dataclasses import replace
 
-    from rollaway.uncertainty import rollaway_risk
+    from rollaway.uncertainty.draws import rollaway_risk
     risk = rollaway_risk(m, hand_force_N=hand_force_N, grade_pct=grade_pct, direction=direction, occupants=occupants,
                          duration_s=duration_s, initial_temp_C=initial_drum_temp_C, draws=uncertainty, seed=seed)
     return replace(v, risk=risk)
 
 
 def build_scenario(scenario=None, *, model=None, **scenario_keys):
-    """A :class:`rollaway.scenario.Scenario` from a file, keys, or both (keys override the file's);
+    """A :class:`rollaway.hold.scenario.Scenario` from a file, keys, or both (keys override the file's);
     the arguments are those of :func:`simulate`."""
     import dataclasses
 
-    from rollaway.scenario import Scenario, scenario_from_mapping
+    from rollaway.hold.scenario import Scenario, scenario_from_mapping
     if isinstance(scenario, Scenario):
         if scenario_keys:
             raise UserError("give a scenario file and keys to change, or a Scenario object alone; use "
@@ -207,10 +207,10 @@ def check(targets=(), *, model=None, analytic: bool = False, uncertainty: int | 
 
     Returns
     -------
-    rollaway.compliance.CheckResult
+    rollaway.sweep.compliance.CheckResult
         ``.passed`` (every case holds), ``.failed`` (row numbers), ``.table()`` (pandas), ``.columns``.
     """
-    from rollaway.compliance import run_check
+    from rollaway.sweep.compliance import run_check
     return run_check(targets, model, analytic=analytic, uncertainty=uncertainty)
 
 
@@ -236,7 +236,7 @@ def load_measurements(path, **mapping):
     rollaway.errors.UserError
         Listing every problem of the file (line and column) at once.
     """
-    from rollaway.identify.measurements import load_measurements as load
+    from rollaway.bench.measurements import load_measurements as load
     if mapping:
         accepted = inspect.signature(load).parameters
         unknown = [k for k in mapping if k not in accepted]

@@ -8,9 +8,9 @@ from hypothesis import HealthCheck, given, settings
 from hypothesis import strategies as st
 
 from rollaway.errors import UserError, read_toml
-from rollaway.identify.measurements import load_measurements
-from rollaway.parameters import SPEC_BY_NAME, SPECS, parameters_from_mapping
-from rollaway.scenario import scenario_from_mapping
+from rollaway.bench.measurements import load_measurements
+from rollaway.model.parameters import SPEC_BY_NAME, SPECS, parameters_from_mapping
+from rollaway.hold.scenario import scenario_from_mapping
 from rollaway.sweep.spec import MAX_POINTS, spec_from_mapping
 from rollaway.sweep.store import JOURNAL, Journal
 

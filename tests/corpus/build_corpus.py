@@ -111,7 +111,7 @@ add(S, "deep-nesting.toml", sc() + "x = " + "[" * 3000 + "]" * 3000 + "\n", "err
 add(S, "a-folder.toml", None, "error", ["folder"])
 
 P = "params"
-FULL = "".join(f"{k} = {v!r}\n" for k, v in __import__("rollaway.parameters", fromlist=["x"]).PARAMETER_SETS["paper"].items())
+FULL = "".join(f"{k} = {v!r}\n" for k, v in __import__("rollaway.model.parameters", fromlist=["x"]).PARAMETER_SETS["paper"].items())
 add(P, "ok-extends.toml", 'extends = "paper"\nmu_drum = 0.35\n', "accept")
 add(P, "ok-full.toml", FULL, "accept")
 add(P, "ok-bom.toml", "\ufeffextends = \"paper\"\nmu_drum = 0.35\n", "accept")

@@ -4,7 +4,7 @@ import pytest
 
 from rollaway import hold
 from rollaway.effects import CATALOGUE
-from rollaway.model import DrumModel
+from rollaway.model.drum_model import DrumModel
 
 CASE = dict(grade_pct=30.0, direction="downhill", occupants=5)
 DURATION_S = 3600.0

@@ -1,7 +1,7 @@
 """An independent bench-data generator for testing diagnose (written from the paper's equations,
 not from the model code: it imports neither rollaway.effects nor rollaway.identify.synth/model).
 
-Only Table 1's values are taken from :func:`rollaway.parameters.paper`; the physics below is
+Only Table 1's values are taken from :func:`rollaway.model.parameters.paper`; the physics below is
 written out again: eq. (10) cooling (or a radiating drum integrated by RK4), eq. (24) lever
 displacement, eq. (16a/b) clamp force, eqs. (18)–(21) self-energising, eq. (17b) torque.
 
@@ -16,8 +16,8 @@ from __future__ import annotations
 
 import numpy as np
 
-from rollaway.identify.measurements import Measurements
-from rollaway.parameters import paper
+from rollaway.bench.measurements import Measurements
+from rollaway.model.parameters import paper
 
 SAMPLING = {"1min": 60.0, "5min": 300.0, "15min": 900.0, "irregular": None}
 HIGH_RATE = {"1Hz": 1.0, "10Hz": 0.1, "100Hz": 0.01}     # bench logs as rigs write them (tests of the reduction)

@@ -85,7 +85,7 @@ def test_effects_outside_the_catalogue_are_not_claimed(hidden, scheme):
 
 
 def test_noise_estimate_ignores_outliers_and_steps_and_says_when_it_cannot():
-    from rollaway.identify.noise import noise_estimate
+    from rollaway.bench.noise import noise_estimate
     data = generate(["ratchet_step"], sampling="1min", seed=35, tail_dof=None)
     spikes = np.random.default_rng(0).choice(len(data), 8, replace=False)
     data.torque_Nm[spikes] += 150.0

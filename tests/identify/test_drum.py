@@ -122,7 +122,7 @@ def test_per_test_offsets_make_eq24_unidentifiable_and_say_so():
 
 
 def test_report_text_json_and_model_file_carry_the_identifiability(tmp_path):
-    from rollaway.model import load_model
+    from rollaway.model.drum_model import load_model
     dg = diagnose(generate(drum=OTHER_DRUMS["all_together"], seed=13, directions=("downhill",)))
     text = dg.summary()
     assert "Your drum" in text and "not tested" in text and "shoe_arm_ratio" in text
@@ -140,7 +140,7 @@ def test_report_text_json_and_model_file_carry_the_identifiability(tmp_path):
 
 def test_untested_direction_band_covers_the_truth():
     """Downhill-only data from drums with other arms: the uphill 5–95 % margin band covers the truth."""
-    from rollaway.uncertainty import rollaway_risk
+    from rollaway.uncertainty.draws import rollaway_risk
     from rollaway.hold import required_torque
     covered = 0
     cases = [("arm_80mm", 20), ("all_together", 21), ("thick_soft_lining", 22), ("radius_100mm", 23)]

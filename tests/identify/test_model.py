@@ -1,13 +1,14 @@
 import numpy as np
 import pytest
 
-from rollaway.identify import BenchModel, Measurements
+from rollaway.bench import Measurements
+from rollaway.identify.model import BenchModel
 from rollaway.effects import CATALOGUE, get_effect
 from rollaway.effects.radiation_cooling import radiative_convective_temperature_C
 from rollaway.effects.shoe_thermal_lag import lagged_temperature_C
-from rollaway.brake import drum_brake
+from rollaway.model.brake import drum_brake
 from rollaway.errors import UserError
-from rollaway.parameters import paper
+from rollaway.model.parameters import paper
 
 
 def _data(direction="uphill", force=250.0, t0=200.0):

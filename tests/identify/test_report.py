@@ -48,7 +48,7 @@ def test_diagnose_report_statistics(run_cli, creep_csv, tmp_path):
 
 def test_repr_html(creep_csv):
     from rollaway.identify.calibrate import calibrate
-    from rollaway.identify.measurements import load_measurements
+    from rollaway.bench.measurements import load_measurements
     fit = calibrate(load_measurements(creep_csv), ["lining_creep"])
     h = fit._repr_html_()
     assert "<table>" in h and "lining_creep.relaxed_fraction" in h

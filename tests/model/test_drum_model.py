@@ -5,8 +5,8 @@ import pytest
 from rollaway.effects import CATALOGUE
 from rollaway.effects.base import Effect, EffectParameter
 from rollaway.errors import UserError
-from rollaway.model import DrumModel
-from rollaway.parameters import paper
+from rollaway.model.drum_model import DrumModel
+from rollaway.model.parameters import paper
 from rollaway.physics import cooling, drum
 
 T = np.linspace(0.0, 3600.0, 97)

@@ -5,9 +5,9 @@ import numpy as np
 import pytest
 
 from rollaway.errors import UserError
-from rollaway.model import Covariance, DrumModel
-from rollaway.model import load_model
-from rollaway.model_file import model_to_toml, save_model
+from rollaway.model.drum_model import Covariance, DrumModel
+from rollaway.model.drum_model import load_model
+from rollaway.model.model_file import model_to_toml, save_model
 
 T = np.linspace(0, 3600, 13)
 
@@ -102,7 +102,7 @@ def test_least_force_curves_of_a_model_with_clamp_loss_lie_above_the_paper_model
 def test_calibration_table_is_validated(tmp_path):
     import pytest
     from rollaway.errors import UserError
-    from rollaway.model import DrumModel
+    from rollaway.model.drum_model import DrumModel
     good = tmp_path / "good.toml"
     good.write_text('extends = "paper"\n[calibration]\nmu_drum = "fitted: 0.38 ± 0.01"\n', encoding="utf-8")
     assert DrumModel(good).calibration == {"mu_drum": "fitted: 0.38 ± 0.01"}

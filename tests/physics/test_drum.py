@@ -1,8 +1,8 @@
 import numpy as np
 import pytest
 
-from rollaway.brake import unenergised_force
-from rollaway.parameters import paper
+from rollaway.model.brake import unenergised_force
+from rollaway.model.parameters import paper
 from rollaway.physics import drum, vehicle, cooling
 
 

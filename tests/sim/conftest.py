@@ -1,7 +1,7 @@
 import pytest
 
 from rollaway.hold import hold_margin
-from rollaway.scenario import scenario_from_mapping
+from rollaway.hold.scenario import scenario_from_mapping
 
 
 def make_scenario(**kw):
@@ -12,7 +12,7 @@ def make_scenario(**kw):
 
 def force_for_margin(margin, grade_pct, direction, occupants=1):
     """Hand force giving a constant brake margin at ambient drum temperature (no cooling)."""
-    from rollaway.parameters import paper
+    from rollaway.model.parameters import paper
     p = paper()
     t0 = p.ambient_temp_C
     m1, m2 = (float(hold_margin(p, 0.0, f, grade_pct, direction, occupants, initial_temp_C=t0)) for f in (300, 400))

@@ -3,7 +3,7 @@ import mujoco
 import numpy as np
 import pytest
 
-from rollaway.brake import drum_brake
+from rollaway.model.brake import drum_brake
 from rollaway.sim import build_model, simulate
 from rollaway.sim.brake_callback import BrakeController
 from tests.sim.conftest import make_scenario

@@ -5,7 +5,7 @@ import mujoco
 import numpy as np
 import pytest
 
-from rollaway.parameters import paper
+from rollaway.model.parameters import paper
 from rollaway.physics.vehicle import centre_of_gravity_m
 from rollaway.sim import build_model
 from rollaway.sim.model import MODEL_PATH, REAR_INVWEIGHT_SCALE, build_spec

@@ -4,8 +4,8 @@ import dataclasses
 import pytest
 
 from rollaway import hold
-from rollaway.model import DrumModel
-from rollaway.scenario import scenario_from_mapping
+from rollaway.model.drum_model import DrumModel
+from rollaway.hold.scenario import scenario_from_mapping
 from rollaway.sim import simulate
 
 

@@ -3,7 +3,7 @@ from pathlib import Path
 
 import pytest
 
-from rollaway.scenario import load_scenario
+from rollaway.hold.scenario import load_scenario
 from rollaway.sim import SimResult, simulate
 from tests.sim.conftest import make_scenario
 

@@ -11,7 +11,7 @@ import psutil
 import pytest
 
 from rollaway.errors import UserError
-from rollaway.scenario import preset_scenarios
+from rollaway.hold.scenario import preset_scenarios
 from rollaway.sweep import grid_spec, run_sweep
 from rollaway.sweep.folder import FolderLock
 from rollaway.sweep.store import JOURNAL, Journal

@@ -2,7 +2,7 @@
 import pandas as pd
 import pytest
 
-from rollaway.scenario import preset_scenarios
+from rollaway.hold.scenario import preset_scenarios
 from rollaway.sweep import grid_spec, run_sweep
 from rollaway.sweep.spec import expand, SweepSpec
 

@@ -126,14 +126,14 @@ def test_range_endpoints_inclusive_step(tmp_path):
 def test_point_ids_are_stable_vectorised_and_ignore_the_sign_of_zero():
     import subprocess
     import sys
-    from rollaway.scenario import preset_scenarios
+    from rollaway.hold.scenario import preset_scenarios
     from rollaway.sweep.spec import grid_spec, point_ids
     base = preset_scenarios("fmvss135")[0]
     spec = grid_spec(base, {"grade_pct": [0.0, -0.0, 10.0, 20.0], "direction": ["uphill", "downhill"]})
     assert len(spec.points) == 2 * 3                       # -0.0 and 0.0 are one point
     ids = list(spec.points["point_id"])
     assert len(set(ids)) == len(ids) and all(len(i) == 16 and int(i, 16) >= 0 for i in ids)
-    code = ("from rollaway.scenario import preset_scenarios; from rollaway.sweep.spec import grid_spec;"
+    code = ("from rollaway.hold.scenario import preset_scenarios; from rollaway.sweep.spec import grid_spec;"
             "print(list(grid_spec(preset_scenarios('fmvss135')[0], {'grade_pct': [0.0, 10.0, 20.0],"
             "'direction': ['uphill', 'downhill']}).points['point_id']))")
     other = subprocess.run([sys.executable, "-c", code], capture_output=True, text=True, check=True).stdout

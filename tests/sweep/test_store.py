@@ -5,7 +5,7 @@ import numpy as np
 import pytest
 
 from rollaway.hold import analytic_verdict
-from rollaway.scenario import preset_scenarios
+from rollaway.hold.scenario import preset_scenarios
 from rollaway.sweep.analytic import analytic_pass, in_band
 from rollaway.sweep.spec import expand
 from rollaway.sweep.store import Journal, drop_records

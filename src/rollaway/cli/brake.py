@@ -15,7 +15,7 @@ from rollaway.physics.drum import DIRECTIONS
 
 def load_cli_model(params, overrides=()):
     """The --params model (set name, parameter or model file) with CLI overrides ``(key, value, flag)``."""
-    from rollaway.model import load_model
+    from rollaway.model.drum_model import load_model
     model = load_model(params)
     p = model.params.with_overrides(list(overrides))
     return model if p is model.params else model.with_params(p)

@@ -22,7 +22,7 @@ def chart(
     from rollaway.errors import UserError
     from rollaway.figures.design import design_chart
     from rollaway.hold import validate_occupants
-    from rollaway.model import load_model
+    from rollaway.model.drum_model import load_model
 
     validate_occupants(occupants)
     if not (0 < duration_s <= 7 * 86400):

@@ -10,7 +10,7 @@ from rollaway.cli import options as opt
 
 from rollaway.cli.output import FORMATS, write_table
 from rollaway.errors import check_choice
-from rollaway.regulations import PRESETS, get_preset
+from rollaway.hold.regulations import PRESETS, get_preset
 
 DEFAULT_PRESETS = ("fmvss135", "unr13h")
 SHORT = {"scenario": "scenario", "grade_pct": "grade %", "occupants": "occ.", "hand_force_N": "force N",

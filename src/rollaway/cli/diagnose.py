@@ -50,7 +50,7 @@ def diagnose(
                noise_temp_C=noise_temp_C or None, free=free or None, fix=fix)
     write_outputs(diag, report=report, json_out=json_out, fmt=fmt)
     if check_calibration:
-        from rollaway.identify.calibration_check import check_calibration as check, words
+        from rollaway.uncertainty.calibration_check import check_calibration as check, words
         typer.echo(words(check(diag, check_calibration)), err=fmt == "json")
     if save_model:
         typer.echo(f"model: {diag.save_model(save_model, data)} (your drum + the verdict's effects; use it with "

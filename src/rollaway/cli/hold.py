@@ -16,7 +16,7 @@ from rollaway.hold import (effective_slope, hold_margin, required_torque, valida
                            validate_occupants)
 from rollaway.jsonsafe import to_jsonable
 from rollaway.physics.drum import DIRECTIONS
-from rollaway.scenario import MAX_DURATION_S
+from rollaway.hold.scenario import MAX_DURATION_S
 
 
 def hold(

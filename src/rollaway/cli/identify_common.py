@@ -60,8 +60,8 @@ def load_data(path, columns=(), manifest=None, window_s=None):
 
     import typer
 
-    from rollaway.identify.columns import column_map, is_lab_format
-    from rollaway.identify.measurements import load_measurements
+    from rollaway.bench.columns import column_map, is_lab_format
+    from rollaway.bench.measurements import load_measurements
     p = Path(path)
     own = p / "columns.toml"
     notes = []
@@ -72,7 +72,7 @@ def load_data(path, columns=(), manifest=None, window_s=None):
     streaming = bool(colmap) or manifest or window_s is not None or is_lab_format(p) or \
         (p.is_file() and p.stat().st_size > SMALL_CSV_BYTES)
     if streaming:
-        from rollaway.identify.sources import read_log
+        from rollaway.bench.sources import read_log
         data = read_log(p, colmap, manifest, window_s, notes)
     else:
         data = load_measurements(path)

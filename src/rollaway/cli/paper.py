@@ -8,7 +8,7 @@ import typer
 
 from rollaway.cli import options as opt
 
-from rollaway.model import load_model
+from rollaway.model.drum_model import load_model
 
 
 def paper(

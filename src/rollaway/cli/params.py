@@ -6,8 +6,8 @@ from typing import Optional
 import typer
 
 from rollaway.cli.output import write_table
-from rollaway.model import load_model
-from rollaway.parameters import SPEC_BY_NAME
+from rollaway.model.drum_model import load_model
+from rollaway.model.parameters import SPEC_BY_NAME
 
 
 def params(

@@ -135,7 +135,7 @@ def _percentile_draw(scenario, draws: int, percentile: float):
     """The scenario with the model at the draw whose least margin is at *percentile* (printed)."""
     import dataclasses
 
-    from rollaway.uncertainty import rollaway_risk
+    from rollaway.uncertainty.draws import rollaway_risk
     risk = rollaway_risk(scenario.model, hand_force_N=scenario.hand_force_N, grade_pct=scenario.grade_pct,
                          direction=scenario.direction, occupants=scenario.occupants, duration_s=scenario.duration_s,
                          draws=draws)

@@ -18,7 +18,7 @@ Each hook receives the :class:`ModelState` (all samples of all tests, already co
 upstream quantities) and ``v``, a dict of this effect's parameter values, and returns
 the (possibly) modified quantity.  The default hooks return the input unchanged.
 The model skips an effect whose parameters are all at their neutral values, so the
-neutral model is bit-identical to the baseline (:func:`rollaway.brake.drum_brake`).
+neutral model is bit-identical to the baseline (:func:`rollaway.model.brake.drum_brake`).
 
 Hooks see the test of every sample: ``state.test_index`` (position in ``state.test_ids``).
 A parameter declared with ``per_test=True`` takes one value per test; the hook then gets
@@ -54,7 +54,6 @@ from typing import ClassVar
 import numpy as np
 
 from rollaway.errors import UserError
-from rollaway.parameters import BrakeParameters
 
 
 @dataclass(frozen=True)
@@ -80,7 +79,7 @@ class EffectParameter:
 class ModelState:
     """All samples of all tests, flattened; filled stage by stage by the model."""
 
-    params: BrakeParameters
+    params: "BrakeParameters"     # rollaway.model.parameters.BrakeParameters (not imported: effects sit below model)
     time_s: np.ndarray
     hand_force_N: np.ndarray
     sign: np.ndarray               # +1 facing downhill, −1 uphill (eqs. 18/19)

@@ -48,7 +48,7 @@ def design_chart(models: dict, out: str | Path, *, occupants: int = 5, duration_
                     label=f"{label}, facing {facing}")
             model = models[label]
             if uncertainty and (getattr(model, "covariance", None) is not None or getattr(model, "predictive", None)):
-                from rollaway.uncertainty import least_force_band
+                from rollaway.uncertainty.draws import least_force_band
                 band = least_force_band(model, BAND_GRADES_PCT, facing, occupants, duration_s, initial_temp_C,
                                         draws=uncertainty)
                 ax.fill_between(BAND_GRADES_PCT, band["p5"], band["p95"], color=colours[i % len(colours)],

@@ -14,9 +14,9 @@ matplotlib.use("Agg")
 import matplotlib.pyplot as plt  # noqa: E402
 import numpy as np  # noqa: E402
 
-from rollaway.brake import drum_brake, drum_temperature  # noqa: E402
+from rollaway.model.brake import drum_brake, drum_temperature  # noqa: E402
 from rollaway.hold import required_torque  # noqa: E402
-from rollaway.parameters import BrakeParameters  # noqa: E402
+from rollaway.model.parameters import BrakeParameters  # noqa: E402
 
 HAND_FORCES_N = (200.0, 250.0, 300.0, 340.0, 400.0)
 TIME_S = np.linspace(0.0, 3600.0, 361)

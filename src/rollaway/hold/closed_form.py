@@ -11,7 +11,7 @@ Two conditions, both from a static balance:
 Grades are signed: a negative grade flips the direction the car faces relative to
 the fall line (a car "facing downhill" on −20 % faces uphill on 20 %).
 Everything is vectorised.  Every function takes a parameter set or a
-:class:`~rollaway.model.DrumModel`.  For the paper's chain closed forms replace scans (it is
+:class:`~rollaway.model.drum_model.DrumModel`.  For the paper's chain closed forms replace scans (it is
 affine in u_6 and ΔT, and ΔT(t) is monotone); a model with effects is solved numerically
 (:mod:`rollaway.hold.numeric`: dense evaluation plus bracketing refinement).  The verdict of one
 case is put together in :mod:`rollaway.hold.verdict`.
@@ -21,10 +21,10 @@ from __future__ import annotations
 import numpy as np
 from numpy.typing import ArrayLike
 
-from rollaway.brake import drum_temperature, shoe_factor, unenergised_force
+from rollaway.model.brake import drum_temperature, shoe_factor, unenergised_force
 from rollaway.errors import UserError
-from rollaway.model import DrumModel, as_model
-from rollaway.parameters import BrakeParameters
+from rollaway.model.drum_model import DrumModel, as_model
+from rollaway.model.parameters import BrakeParameters
 from rollaway.physics import drum as drum_phys
 from rollaway.physics import vehicle
 

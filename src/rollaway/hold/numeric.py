@@ -19,7 +19,7 @@ from __future__ import annotations
 import numpy as np
 from scipy.optimize import elementwise
 
-from rollaway.model import DrumModel
+from rollaway.model.drum_model import DrumModel
 
 GRID_POINTS = 801            # instants of the dense evaluation over [0, D] [assumed: ≥ 4 per effect time constant]
 CHUNK_POINTS = 512           # points evaluated together (memory: CHUNK × GRID floats per array)

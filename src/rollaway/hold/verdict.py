@@ -37,7 +37,7 @@ class HoldVerdict:
     least_hand_force_N : float or None
         Least lever force [N] whose brake margin stays ≥ 1 over the duration; None where no hand
         force can hold (the tyres slide, the shoe self-locks, or μ_d = 0).
-    risk : rollaway.uncertainty.Risk or None
+    risk : rollaway.uncertainty.draws.Risk or None
         With ``uncertainty=N`` (:func:`rollaway.hold`): the N draws from the model's covariance.
     """
 
@@ -48,7 +48,7 @@ class HoldVerdict:
     reason: str
     outcome: str = "held"                      # one of OUTCOMES
     least_hand_force_N: float | None = None    # None where no hand force can hold (tyres, self-locking, μ_d = 0)
-    risk: object | None = field(default=None, repr=False, compare=False)   # rollaway.uncertainty.Risk
+    risk: object | None = field(default=None, repr=False, compare=False)   # rollaway.uncertainty.draws.Risk
 
     @property
     def slip_time_s(self) -> float | None:

@@ -1,7 +1,7 @@
 """Calibration: one joint fit of both channels (lmfit-style result).
 
 Both measured channels are fitted together, each sample standardised by its noise σ
-(a model-free estimate, :mod:`rollaway.identify.noise`, or the instrument's figure), with
+(a model-free estimate, :mod:`rollaway.bench.noise`, or the instrument's figure), with
 every test's start temperature T_0 a nuisance parameter (the t = 0 reading is one noisy
 measurement of it, not its value) and per-test effect parameters profiled out
 (:mod:`rollaway.identify.fitting`).
@@ -23,7 +23,7 @@ import numpy as np
 from scipy import special
 
 from rollaway.identify.fitting import Problem, single_blas_thread
-from rollaway.identify.measurements import Measurements
+from rollaway.bench.measurements import Measurements
 from rollaway.identify.model import INITIAL_TEMP, BenchModel, Prediction
 
 
@@ -153,7 +153,7 @@ def _noise_weights(data: Measurements, model: BenchModel, values: dict) -> tuple
     """1/σ per sample for both channels: the noise model attached to *data*, else estimated from it."""
     sq, st = data.torque_sigma_Nm, data.temp_sigma_C
     if sq is None or st is None:
-        from rollaway.identify.noise import noise_estimate
+        from rollaway.bench.noise import noise_estimate
         tau = model.state(data, values).cooling_time_constant_s
         if sq is None:
             nq = noise_estimate(data, data.torque_Nm, tau, relative=True)

@@ -7,8 +7,8 @@ from dataclasses import dataclass, field
 import numpy as np
 
 from rollaway.identify.calibrate import FitResult, calibrate, evaluate
-from rollaway.identify.measurements import Measurements
-from rollaway.identify.rawnoise import window_noise
+from rollaway.bench.measurements import Measurements
+from rollaway.bench.rawnoise import window_noise
 from rollaway.identify.residuals import Noise, association, excursions, noise_estimate, trend_words
 
 NOISE_BAND = 2.5   # a residual leaves the noise band when |r| > 2.5 σ

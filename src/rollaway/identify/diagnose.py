@@ -1,6 +1,6 @@
 """Which physical effects is the model missing?  Calibrate, select forward, cross-validate, decide.
 
-1. Noise of each channel without the physics (:mod:`rollaway.identify.noise`), or the
+1. Noise of each channel without the physics (:mod:`rollaway.bench.noise`), or the
    instrument's figures; every fit weights the samples by it.  Each test's T_0 is a
    nuisance parameter of every fit (never the t = 0 reading taken as exact).
 2. Forward selection: fit every remaining candidate jointly with the current model (the
@@ -28,8 +28,8 @@ from rollaway.identify.coarse import MAX_WINDOW_S, coarsen
 from rollaway.identify.drum import DrumCalibration, calibrate_drum, predictive_covariance, recheck
 from rollaway.identify.export import CalibratedModelMixin
 from rollaway.identify.fitting import single_blas_thread
-from rollaway.identify.measurements import Measurements
-from rollaway.identify.noise import Noise, noise_estimate, sample_sigma
+from rollaway.bench.measurements import Measurements
+from rollaway.bench.noise import Noise, noise_estimate, sample_sigma
 from rollaway.identify.residuals import association, trend_words
 from rollaway.identify.selection import (BIC_THRESHOLD, Candidate, cv_score, eliminate, exchange, folds, forward_step,
                                          has_per_test, per_test_signature, structure, weighted_chi2)
@@ -126,6 +126,10 @@ class Diagnosis(CalibratedModelMixin):
 
     def _calibrated_fit(self):
         return self.refined
+
+    def again(self, data: Measurements) -> "Diagnosis":
+        """Diagnose other measurements (a synthetic campaign of the same design) with the default options."""
+        return diagnose(data)
 
 
 def _f(x):
@@ -323,11 +327,11 @@ def _partial(data, params, base: FitResult, refined: FitResult, chosen: list[str
 def _predictive(data, refined: FitResult, pool: list[FitResult], n_effects: int, drum: DrumCalibration,
                 misfit: bool = False) -> None:
     """Attach the predictive record (model error, tested range) and the competing effect sets with their
-    weights to *refined* (``fit_info``), for the saved model (:mod:`rollaway.identify.bands`).  *misfit*:
+    weights to *refined* (``fit_info``), for the saved model (:mod:`rollaway.uncertainty.bands`).  *misfit*:
     the saved model's form is known to leave structure (a "partial" effect, or structure remaining):
-    its model error is widened by :data:`rollaway.identify.bands.MISFIT_INFLATION`."""
-    from rollaway.identify.bands import COMPETING_BIC, alternatives, model_error, validity
-    from rollaway.predictive import record
+    its model error is widened by :data:`rollaway.uncertainty.bands.MISFIT_INFLATION`."""
+    from rollaway.uncertainty.bands import COMPETING_BIC, alternatives, model_error, validity
+    from rollaway.model.predictive_record import record
     val = validity(data)
     refined.fit_info["predictive"] = record(model_error(refined, misfit), val)
     if not pool:                  # the alternatives were weighed on the selection's rows (already attached)

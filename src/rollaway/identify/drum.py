@@ -1,7 +1,7 @@
 """The user's drum: which brake parameters the bench data identify, calibrated before any effect is sought.
 
 A bench rig tests *its* drum, not the paper's.  :func:`calibrate_drum` frees one name per
-identifiable product of the chain (:mod:`rollaway.drum_parameters`: μ_d for the torque scale,
+identifiable product of the chain (:mod:`rollaway.model.drum_parameters`: μ_d for the torque scale,
 the eq. (24) slope and offset, the arm ratio l_fr/l_f, h, the ambient when not logged) and
 decides which of them these data determine:
 
@@ -28,13 +28,13 @@ from dataclasses import dataclass, field
 
 import numpy as np
 
-from rollaway.drum_parameters import BASELINE_FREE, FREE_PARAMETERS, apply, value_of
+from rollaway.model.drum_parameters import BASELINE_FREE, FREE_PARAMETERS, apply, value_of
 from rollaway.errors import UserError, suggest
 from rollaway.identify.calibrate import FitResult, calibrate, jacobian_at
-from rollaway.identify.measurements import Measurements
+from rollaway.bench.measurements import Measurements
 from rollaway.identify.model import DrumPlan
-from rollaway.model import Covariance
-from rollaway.parameters import BrakeParameters, load_parameters
+from rollaway.model.drum_model import Covariance
+from rollaway.model.parameters import BrakeParameters, load_parameters
 
 MIN_SINGULAR_VALUE = 3.0       # data must determine a direction to ≤ 1/3 of the assumed spread [assumed]
 CONFOUND_LOADING = 0.3         # |loading| on the weak direction that counts as "confounded with"

@@ -1,7 +1,7 @@
-"""A fit as a drum-model file: the calibrated :class:`~rollaway.model.DrumModel` with covariance and provenance.
+"""A fit as a drum-model file: the calibrated :class:`~rollaway.model.drum_model.DrumModel` with covariance and provenance.
 
 What ``fit --save-model`` and ``diagnose --save-model`` write, and what ``--params`` of every
-other command reads back (:mod:`rollaway.model_file`).
+other command reads back (:mod:`rollaway.model.model_file`).
 """
 from __future__ import annotations
 
@@ -9,7 +9,7 @@ from pathlib import Path
 
 import numpy as np
 
-from rollaway.model import Covariance, DrumModel
+from rollaway.model.drum_model import Covariance, DrumModel
 
 
 def fit_covariance(fit) -> Covariance | None:
@@ -35,7 +35,7 @@ def fit_covariance(fit) -> Covariance | None:
 
 def calibrated_model(fit, data_path: str | Path | None = None, command: str = "fit") -> DrumModel:
     """The drum model a fit found: its parameter set with μ_d and h, its effects and values, covariance."""
-    from rollaway.model_file import provenance_for
+    from rollaway.model.model_file import provenance_for
 
     model = fit.model.drum_model(fit.values, covariance=fit_covariance(fit))
     model.calibration = dict(fit.fit_info.get("calibration", {}))
@@ -51,7 +51,7 @@ def calibrated_model(fit, data_path: str | Path | None = None, command: str = "f
         if folder:          # a folder of files per test: its name, and one hash over its files (names and contents)
             import hashlib
 
-            from rollaway.model_file import file_sha256
+            from rollaway.model.model_file import file_sha256
             h = hashlib.sha256("".join(f"{f.name}:{file_sha256(f)}\n" for f in files).encode())
             model.provenance.update(data_file=Path(data_path).name + "/", data_sha256=h.hexdigest())
     return model
@@ -59,7 +59,7 @@ def calibrated_model(fit, data_path: str | Path | None = None, command: str = "f
 
 def save_fit(fit, path: str | Path, data_path: str | Path | None, command: str) -> Path:
     """Write the calibrated model of *fit* as a model file (*data_path*: the CSV it was fitted on, or None)."""
-    from rollaway.model_file import save_model
+    from rollaway.model.model_file import save_model
 
     model = calibrated_model(fit, data_path, command)
     effects = ", ".join(e.name for e in model.effects) or "no effect (paper chain, calibrated)"
@@ -68,7 +68,7 @@ def save_fit(fit, path: str | Path, data_path: str | Path | None, command: str) 
 
 
 def data_file(data) -> Path | None:
-    """The file or folder *data* (:class:`~rollaway.identify.measurements.Measurements`) was read from, if it still exists."""
+    """The file or folder *data* (:class:`~rollaway.bench.measurements.Measurements`) was read from, if it still exists."""
     p = Path(str(getattr(data, "source", "")))
     return p if p.exists() else None
 

@@ -26,7 +26,7 @@ import numpy as np
 from scipy import optimize
 from threadpoolctl import threadpool_limits
 
-from rollaway.identify.measurements import Measurements
+from rollaway.bench.measurements import Measurements
 from rollaway.identify.model import INITIAL_TEMP, BenchModel
 
 MAX_OUTER = 4

@@ -6,7 +6,7 @@ from dataclasses import dataclass
 from rollaway.identify.calibrate import FitResult, calibrate, evaluate
 from rollaway.identify.export import CalibratedModelMixin
 from rollaway.effects import get_effect
-from rollaway.identify.measurements import Measurements
+from rollaway.bench.measurements import Measurements
 
 
 @dataclass
@@ -74,7 +74,7 @@ class Ladder(CalibratedModelMixin):
         return self.final
 
     def plot(self, path=None):
-        from rollaway.figures.ladder import ladder_figure
+        from rollaway.identify.ladder_plot import ladder_figure
         fig = ladder_figure(self)
         if path is not None:
             fig.savefig(path, dpi=110, bbox_inches="tight")

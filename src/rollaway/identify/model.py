@@ -1,6 +1,6 @@
 """The extended bench model: the paper's baseline plus effect hooks, over all samples at once.
 
-Free brake parameters are a subset of :data:`rollaway.drum_parameters.BASELINE_FREE` (μ_d, the
+Free brake parameters are a subset of :data:`rollaway.model.drum_parameters.BASELINE_FREE` (μ_d, the
 eq. (24) slope and offset, the arm ratio l_fr/l_f, h, the ambient), chosen by a
 :class:`DrumPlan` (default: μ_d and h); effect parameters are named ``"<effect>.<parameter>"``.  Per-test quantities are separate additions:
 ``"initial_temp_C"`` (each test's start temperature T_0, a nuisance parameter) and effect
@@ -9,10 +9,10 @@ the order of ``data.tests``).  Without ``"initial_temp_C"`` the t = 0 readings a
 A logged ambient that varies within a test is integrated through eq. (10)'s ODE
 (:func:`rollaway.physics.cooling.drum_temperature_logged_ambient_C`).
 
-The chain itself is :class:`rollaway.model.DrumModel` (the one the hold check, the simulator
+The chain itself is :class:`rollaway.model.drum_model.DrumModel` (the one the hold check, the simulator
 and sweeps use); this class maps the fit's values onto it and evaluates it on all samples of
 all tests at once.  With no effects (or all effects neutral) the result is bit-identical to
-:func:`rollaway.brake.drum_brake`.
+:func:`rollaway.model.brake.drum_brake`.
 """
 from __future__ import annotations
 
@@ -21,10 +21,10 @@ from dataclasses import dataclass
 import numpy as np
 
 from rollaway.effects import Effect, ModelState
-from rollaway.identify.measurements import Measurements
-from rollaway.drum_parameters import BASELINE_FREE, LEGACY_FREE, apply, values_of
-from rollaway.model import CHAIN_OVERRIDES, DrumModel
-from rollaway.parameters import BrakeParameters
+from rollaway.bench.measurements import Measurements
+from rollaway.model.drum_parameters import BASELINE_FREE, LEGACY_FREE, apply, values_of
+from rollaway.model.drum_model import CHAIN_OVERRIDES, DrumModel
+from rollaway.model.parameters import BrakeParameters
 from rollaway.physics import cooling
 
 INITIAL_TEMP = "initial_temp_C"          # per-test nuisance: each test's T_0 [°C]
@@ -101,13 +101,13 @@ class BenchModel:
 
     def temperature_parameters(self) -> list[str]:
         """Parameters of the drum-temperature channel (h and temperature-changing effects)."""
-        from rollaway.drum_parameters import FREE_PARAMETERS
+        from rollaway.model.drum_parameters import FREE_PARAMETERS
         return [n for n in self.free if FREE_PARAMETERS[n].channel == "temperature"] + [
             f"{e.name}.{p.name}" for e in self.effects if e.touches_temperature() for p in e.parameters
             if not p.per_test]
 
     def torque_parameters(self) -> list[str]:
-        from rollaway.drum_parameters import FREE_PARAMETERS
+        from rollaway.model.drum_parameters import FREE_PARAMETERS
         return [n for n in self.free if FREE_PARAMETERS[n].channel == "torque"] + [
             f"{e.name}.{p.name}" for e in self.effects if not e.touches_temperature() for p in e.parameters
             if not p.per_test]

@@ -12,8 +12,8 @@ import math
 import numpy as np
 from scipy import special
 
-from rollaway.identify.measurements import Measurements
-from rollaway.identify.noise import CLIP, Noise, clip_square, noise_estimate  # noqa: F401  (re-exported)
+from rollaway.bench.measurements import Measurements
+from rollaway.bench.noise import CLIP, Noise, clip_square, noise_estimate  # noqa: F401  (re-exported)
 
 STRUCTURE_P = 1e-3      # significance of each structure test
 CHANNELS = {"torque": ("torque_Nm", "N·m"), "temperature": ("drum_temp_C", "°C")}

@@ -12,16 +12,15 @@ from dataclasses import dataclass
 import numpy as np
 
 from rollaway.identify.calibrate import FitResult, calibrate
-from rollaway.identify.measurements import Measurements
-from rollaway.identify.noise import Noise
+from rollaway.bench.measurements import Measurements
+from rollaway.bench.noise import Noise
 from rollaway.identify.residuals import structure_tests
+from rollaway.uncertainty.heldout import FOLDS, LOO_TESTS, folds, loto_residuals, loto_scores  # noqa: F401
 
 BIC_THRESHOLD = -10.0        # "very strong" evidence (Kass & Raftery 1995)
 CV_TOP = 3                   # cross-validate at most this many candidates per step
 SCREEN_ITERATIONS = 6        # Levenberg–Marquardt iterations of a candidate's ranking fit
 REFIT_TOP = 2                # screened candidates refitted with the brake parameters free, per step
-LOO_TESTS = 10               # K-fold by test: leave-one-test-out up to 10 tests, else FOLDS folds
-FOLDS = 5
 
 
 @dataclass
@@ -93,12 +92,6 @@ def weighted_chi2(fit: FitResult) -> float:
 
 
 # -- cross-validation -----------------------------------------------------------------------
-def folds(n_tests: int) -> list[np.ndarray]:
-    """Test indices of each held-out fold: one test each up to LOO_TESTS tests, else FOLDS folds."""
-    k = n_tests if n_tests <= LOO_TESTS else FOLDS
-    return [np.arange(i, n_tests, k) for i in range(k)]
-
-
 def _restrict(values: dict, families: list[str], keep: np.ndarray) -> dict:
     out = dict(values)
     for f in families:
@@ -122,30 +115,6 @@ def cv_score(data: Measurements, effects, params, start: FitResult) -> np.ndarra
     d = start.data
     loo = loto_residuals(start)
     return np.bincount(np.concatenate([d.test_index, d.test_index]), loo * loo, d.n_tests)
-
-
-def loto_residuals(fit: FitResult) -> np.ndarray:
-    """Standardised residuals (model − measured)/σ, [temperature | torque], of every sample as
-    predicted with its own test (its fold) left out of the calibration: the linearised
-    leave-one-test-out of :func:`cv_score`.  Without a Jacobian: the fit's own residuals."""
-    d = fit.data
-    pred = fit.prediction
-    r = np.concatenate([(pred.drum_temp_C - d.drum_temp_C) / d.temp_sigma_C,
-                        (pred.torque_Nm - d.torque_Nm) / d.torque_sigma_Nm])
-    if fit.jacobian is None or not fit.names:
-        return r
-    j = np.where(np.isfinite(fit.jacobian), fit.jacobian, 0.0)
-    j = j / np.sqrt(np.maximum((j * j).sum(axis=0), 1e-300))
-    rows_test = np.concatenate([d.test_index, d.test_index])
-    a = j.T @ j
-    out = r.copy()
-    for held in folds(d.n_tests):
-        g = np.isin(rows_test, held)
-        jg, rg = j[g], r[g]
-        m = a - jg.T @ jg
-        m += 1e-10 * np.trace(m) / max(len(m), 1) * np.eye(len(m))
-        out[g] = rg + jg @ np.linalg.lstsq(m, jg.T @ rg, rcond=1e-8)[0]   # a direction only g informs: dropped
-    return out
 
 
 def _cv_refit(data: Measurements, effects, params, start: FitResult) -> np.ndarray:
@@ -215,7 +184,7 @@ def forward_step(data, params, names, current: FitResult, chosen: list[str], ste
 
 def _held_plan(params, current: FitResult):
     """The plan of *current* with its brake parameters held at their fitted values (for screening)."""
-    from rollaway.drum_parameters import apply
+    from rollaway.model.drum_parameters import apply
     from rollaway.identify.model import DrumPlan
     free = current.model.free
     if not isinstance(params, DrumPlan) or not free:

@@ -10,7 +10,7 @@ from __future__ import annotations
 import numpy as np
 
 from rollaway.effects import get_effect
-from rollaway.identify.measurements import Measurements
+from rollaway.bench.measurements import Measurements
 from rollaway.identify.model import BenchModel
 from rollaway.errors import UserError
 

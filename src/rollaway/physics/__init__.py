@@ -3,7 +3,7 @@
 One module per physical part; every function names its source equation
 (Ishak et al. 2018, Ingeniería Investigación y Tecnología 19(1),
 doi:10.22201/fi.25940732e.2018.19n1.004) or textbook, and carries units in
-its argument names.  Orchestration lives in :mod:`rollaway.brake` and
+its argument names.  Orchestration lives in :mod:`rollaway.model.brake` and
 :mod:`rollaway.hold`.
 """
 from rollaway.physics.cooling import cooling_time_constant_s, drum_temperature_C, temperature_change_K

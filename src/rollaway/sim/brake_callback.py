@@ -4,7 +4,7 @@ Each rear wheel gets one drum (the hand lever drives both through an equaliser, 
 per drum), so its hinge's ``dof_frictionloss`` is the torque of one drum, eq. (17b):
 T_gen(t) = μ_d · F_l(t) · r_d with F_l from eqs. (16a/b), (18)–(21), (24) and the drum
 temperature from the cooling law, eq. (10) — all from the scenario's drum model
-(:meth:`rollaway.model.DrumModel.evaluate`, effects included), so the simulated car feels
+(:meth:`rollaway.model.drum_model.DrumModel.evaluate`, effects included), so the simulated car feels
 whatever the model knows (e.g. a calibrated clamp-force loss).
 
 Direction (eqs. 18–21): the shoe's self-energising depends on the sense of the torque the
@@ -27,7 +27,7 @@ import numpy as np
 
 from rollaway.errors import UserError
 from rollaway.hold import validate_hand_force
-from rollaway.scenario import Scenario
+from rollaway.hold.scenario import Scenario
 from rollaway.sim.model import ModelInfo
 
 UPDATE_STEPS = 20                 # MuJoCo steps between brake updates [assumed]

@@ -42,7 +42,7 @@ from rollaway.errors import UserError
 from rollaway.hold import effective_slope as hold_effective_slope
 from rollaway.hold import required_torque, total_mass_kg
 from rollaway.physics.vehicle import FRONT_ROW_SEATS, grade_angle_rad
-from rollaway.scenario import Scenario
+from rollaway.hold.scenario import Scenario
 
 MODEL_PATH = Path(__file__).resolve().parents[3] / "models" / "car.xml"
 

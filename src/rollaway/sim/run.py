@@ -45,7 +45,7 @@ import numpy as np
 from rollaway.errors import check_choice
 from rollaway.hold import time_to_slip_s, tyre_adhesion_margin
 from rollaway.jsonsafe import to_jsonable
-from rollaway.scenario import Scenario
+from rollaway.hold.scenario import Scenario
 from rollaway.sim import outcome as oc
 from rollaway.sim.brake_callback import UPDATE_STEPS, BrakeController
 from rollaway.sim.divergence import DivergenceGuard

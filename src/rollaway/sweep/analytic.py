@@ -21,9 +21,9 @@ import pandas as pd
 from rollaway.errors import UserError
 from rollaway.hold import (self_locking, hold_margin, invalid_grade, invalid_hand_force, invalid_occupants, min_brake_margin,
                            minimum_hand_force_N, time_to_slip_s, tyre_adhesion_margin, validate_occupants)
-from rollaway.parameters import SPEC_BY_NAME
+from rollaway.model.parameters import SPEC_BY_NAME
 from rollaway.physics.drum import DIRECTIONS
-from rollaway.scenario import MAX_DURATION_S, Scenario
+from rollaway.hold.scenario import MAX_DURATION_S, Scenario
 from rollaway.sweep.columns import label_codes, label_column
 
 OUTCOMES = ("held", "brake_slip", "tyre_skid", "self_locking")
@@ -83,7 +83,7 @@ def in_band(brake_margin, tyre_margin, band) -> np.ndarray:
 def with_rollaway_probability(table: pd.DataFrame, base: Scenario, draws: int, seed: int = 0) -> pd.DataFrame:
     """Add ``rollaway_probability`` per valid point (*draws* predictive draws of the base model, one loop per
     point) and ``beyond_bench_data``: where the point lies outside what the bench tested."""
-    from rollaway.uncertainty import rollaway_risk
+    from rollaway.uncertainty.draws import rollaway_risk
     out = table.copy()
     prob = np.full(len(out), np.nan)
     beyond = np.full(len(out), "", dtype=object)

@@ -23,8 +23,8 @@ from concurrent.futures import FIRST_COMPLETED, Future, ProcessPoolExecutor, wai
 from functools import partial
 
 from rollaway.errors import UserError
-from rollaway.parameters import BrakeParameters
-from rollaway.scenario import Scenario
+from rollaway.model.parameters import BrakeParameters
+from rollaway.hold.scenario import Scenario
 
 SimulateFn = Callable[..., object]
 SIM_FIELDS = ("outcome", "rollaway_time_s", "max_displacement_m", "min_margin", "creep_m", "wall_time_s",
@@ -42,7 +42,7 @@ def scenario_to_dict(s: Scenario) -> dict:
 def scenario_from_dict(d: dict) -> Scenario:
     """Rebuild a scenario in a worker (plugin effects are imported again from their files)."""
     from rollaway.effects import available_effects, load_effect_file
-    from rollaway.model import DrumModel
+    from rollaway.model.drum_model import DrumModel
 
     d = dict(d)
     params = BrakeParameters(**d.pop("params"), name=d.pop("params_name"))

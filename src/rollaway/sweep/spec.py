@@ -35,8 +35,8 @@ import pyarrow as pa
 
 from rollaway.errors import UserError, check_choice, read_toml, suggest
 from rollaway.physics.drum import DIRECTIONS
-from rollaway.regulations import PRESETS
-from rollaway.scenario import Scenario, load_scenario, preset_scenarios
+from rollaway.hold.regulations import PRESETS
+from rollaway.hold.scenario import Scenario, load_scenario, preset_scenarios
 
 # the axes a sweep may vary; the last varies fastest in a grid
 AXES = ("direction", "occupants", "grade_pct", "hand_force_N", "mu_drum", "initial_drum_temp_C",

@@ -1,0 +1,107 @@
+"""Predictive bands of a calibrated model: what the parameter covariance does not know.
+
+A fitted covariance says how well the data pin the parameters *of the chosen model*.  The road
+question also depends on which effects were chosen and on how wrong the chosen forms are.
+:func:`model_error`, :func:`alternatives` and :func:`validity` measure both, from the bench data themselves
+(:func:`rollaway.model.predictive_record.record` turns them into the model file's ``[predictive]`` table):
+
+* **model error** — every test is predicted by the model calibrated on the other tests
+  (linearised leave-one-test-out, :func:`rollaway.uncertainty.heldout.loto_residuals`).  Each
+  test's score is its relative torque error where its margin is decided (the third of its
+  samples with the lowest predicted torque), less what the measurement noise alone gives.
+  Their root mean square ``rel_sd`` (with ``dof`` = tests − 1) is a multiplicative torque
+  error ε ~ rel_sd·t_dof drawn with every parameter draw: jackknife-style, distribution-free
+  in its scores, Student-t in its use (a handful of tests cannot give a finite 90 % conformal
+  quantile).  When the saved form is known to leave structure (an effect named "partial", or
+  structure remaining), the held-out tests saw that misfit only in part: ``rel_sd`` is widened
+  (:data:`MISFIT_INFLATION`, assumed);
+* **choice of effects** — competing effect sets the data cannot rule out (within
+  :data:`COMPETING_BIC` of the selected one) get pseudo-BMA weights from their leave-one-test-out
+  scores (Bayesian-bootstrap pseudo-BMA: w ∝ exp(−½·Σ score) averaged over Dirichlet reweightings
+  of the tests; Yao et al. 2018, "Using stacking to average Bayesian predictive distributions",
+  §3.1, with the Gaussian log score); draws are split among them;
+* **validity** — the tested hand forces, directions, start temperatures and hold duration.  A
+  road question outside them is flagged and the model error is widened by
+  :func:`rollaway.uncertainty.predictive.extrapolation` (hand force, T_0 and duration by their distance
+  relative to the tested span, an untested direction by one span).
+"""
+from __future__ import annotations
+
+import math
+
+import numpy as np
+
+from rollaway.uncertainty.heldout import loto_residuals, loto_scores
+
+COMPETING_BIC = 6.0          # effect sets within this ΔBIC of the selected one compete for weight
+MIN_WEIGHT = 0.02            # lighter alternatives are dropped (weights renormalised)
+MAX_RELATIVE_SE = 0.35       # an alternative's effect parameters must be sized at least this well
+BOOTSTRAP = 1000             # Bayesian-bootstrap replicates of the per-test scores (BB-pseudo-BMA)
+MISFIT_INFLATION = 2.5       # [assumed] a model whose form leaves structure errs beyond its held-out tests
+MARGIN_SHARE = 1.0 / 3.0     # the share of a test's samples (lowest predicted torque) that decides its margin
+
+
+def validity(data) -> dict:
+    """What the bench covered: hand force [N], start temperature [°C], duration [s], directions."""
+    t0 = data.test_initial_temp_C
+    return {"hand_force_N": [float(np.min(data.hand_force_N)), float(np.max(data.hand_force_N))],
+            "initial_temp_C": [float(np.min(t0)), float(np.max(t0))],
+            "duration_s": float(np.max(data.time_s)),
+            "directions": sorted({"downhill" if s > 0 else "uphill" for s in np.unique(data.sign)})}
+
+
+def model_error(fit, misfit: bool = False) -> dict:
+    """Relative torque error of leave-one-test-out predictions where each test's margin is decided
+    (× :data:`MISFIT_INFLATION` when the model's form is known to leave structure)."""
+    d = fit.data
+    n = len(d)
+    loo = loto_residuals(fit)[n:] * d.torque_sigma_Nm            # model − measured [N·m], own test held out
+    pred = fit.prediction.torque_Nm
+    scores, noise = [], []
+    for k in range(d.n_tests):
+        rows = np.flatnonzero(d.test_index == k)
+        if rows.size == 0:
+            continue
+        m = max(3, int(math.ceil(MARGIN_SHARE * rows.size)))
+        low = rows[np.argsort(pred[rows])[:m]]
+        level = np.maximum(np.abs(pred[low]), 1e-9)
+        scores.append(float(np.mean(loo[low] / level)))
+        noise.append(float(np.mean((d.torque_sigma_Nm[low] / level) ** 2) / low.size))
+    s2 = np.asarray(scores) ** 2
+    rel_sd = math.sqrt(max(float(np.mean(s2) - np.mean(noise)), 0.0)) if scores else 0.0
+    if misfit:
+        rel_sd *= MISFIT_INFLATION
+    return {"rel_sd": rel_sd, "dof": max(len(scores) - 1, 1), "tests": len(scores),
+            "per_test": [float(x) for x in scores], "misfit": misfit}
+
+
+def alternatives(selected, competitors: list) -> list[tuple[float, object]]:
+    """Pseudo-BMA weights of *selected* and its competitors (leave-one-test-out scores), heaviest first."""
+    pool = [selected] + [c for c in competitors if c is not selected and c.jacobian is not None and sized(c)]
+    if len(pool) == 1 or selected.jacobian is None:
+        return [(1.0, selected)]
+    elpd = -0.5 * np.array([loto_scores(f) for f in pool])      # (models, tests) log scores
+    rng = np.random.default_rng(0)
+    alpha = rng.dirichlet(np.ones(elpd.shape[1]), BOOTSTRAP)                     # Bayesian bootstrap of tests
+    z = elpd.shape[1] * alpha @ elpd.T                                           # (BOOTSTRAP, models)
+    z -= z.max(axis=1, keepdims=True)
+    w = (np.exp(z) / np.exp(z).sum(axis=1, keepdims=True)).mean(axis=0)
+    w = np.where(w / w.sum() >= MIN_WEIGHT, w, 0.0)
+    w = w / w.sum()
+    out = [(float(wi), f) for wi, f in zip(w, pool) if wi > 0]
+    return sorted(out, key=lambda t: -t[0])
+
+
+def sized(fit) -> bool:
+    """True when the data size every effect parameter of *fit* (relative standard error ≤
+    :data:`MAX_RELATIVE_SE`, not at a bound): an effect the data cannot size is no competing
+    explanation — its draws would wander through magnitudes the data never supported."""
+    for name, e in fit.estimates.items():
+        if "." not in name:
+            continue
+        if e.at_bound or not np.isfinite(e.stderr) or e.stderr > MAX_RELATIVE_SE * max(abs(e.value), 1e-300):
+            return False
+    return True
+
+
+__all__ = ["alternatives", "model_error", "sized", "validity"]

@@ -1,0 +1,238 @@
+"""From fitted-parameter uncertainty to roll-away risk.
+
+A calibrated :class:`~rollaway.model.drum_model.DrumModel` carries the covariance of its fitted values.
+:func:`draw_values` samples N parameter vectors from the multivariate normal it defines,
+truncated to each parameter's physical bounds (rejection, then clipping of what is left);
+:func:`rollaway_risk` evaluates the hold check for every draw at once (the draws are one more
+broadcast axis of the drum chain) and reports the probability that the car rolls away and
+the 5/50/95 percentiles of the least brake margin and of the slip time.
+"""
+from __future__ import annotations
+
+from dataclasses import dataclass
+
+import numpy as np
+
+from rollaway.model.drum_parameters import LEGACY_FREE
+from rollaway.errors import UserError
+from rollaway.model.drum_model import DrumModel
+
+MAX_REJECTION_ROUNDS = 50
+PERCENTILES = (5.0, 50.0, 95.0)
+
+
+def draw_values(model: DrumModel, n: int, seed: int | None = 0) -> dict[str, np.ndarray]:
+    """N draws of the fitted values from the model's covariance, within bounds: {name: (n,) array}."""
+    if model.covariance is None:
+        raise UserError(f"model '{model.name}' has no [covariance]; save a fitted model with 'rollaway fit DATA "
+                        f"--save-model FILE.toml' (or add a [covariance] table) to use --uncertainty")
+    if not (isinstance(n, (int, np.integer)) and 1 <= n <= 1_000_000):
+        raise UserError(f"--uncertainty {n} must be a whole number of draws from 1 to 1000000, e.g. 1000")
+    c = model.covariance
+    fitted = model.fitted_values()
+    mean = np.array([fitted[k] for k in c.names], float)
+    lo = np.array([model.bounds(k)[0] for k in c.names])
+    hi = np.array([model.bounds(k)[1] for k in c.names])
+    rng = np.random.default_rng(seed)
+    sd = np.sqrt(np.clip(np.diag(c.matrix), 0.0, None))
+    corr = c.matrix / np.outer(np.where(sd > 0, sd, 1.0), np.where(sd > 0, sd, 1.0))
+    w, v = np.linalg.eigh(0.5 * (corr + corr.T))     # factor the correlation: variances of 1e-17 and 1e3 in one
+    root = v * np.sqrt(np.clip(w, 0.0, None))        # matrix would lose the small ones to rounding
+
+    def normal(size):
+        return mean + (rng.standard_normal((size, len(mean))) @ root.T) * sd
+
+    out = np.empty((n, len(mean)))
+    todo = np.arange(n)
+    for _ in range(MAX_REJECTION_ROUNDS):
+        x = normal(todo.size)
+        ok = np.all((x >= lo) & (x <= hi), axis=1)
+        out[todo[ok]] = x[ok]
+        todo = todo[~ok]
+        if todo.size == 0:
+            break
+    if todo.size:                      # the mean sits at a bound: clip the rest
+        out[todo] = np.clip(normal(todo.size), lo, hi)
+    return {k: out[:, i] for i, k in enumerate(c.names)}
+
+
+@dataclass(frozen=True)
+class Risk:
+    """Roll-away risk of one case under parameter uncertainty."""
+
+    draws: int
+    rollaway_probability: float
+    least_margin_percentiles: dict[str, float]     # "p5", "p50", "p95" of min(brake least margin, tyre margin)
+    brake_margin_percentiles: dict[str, float]     # of the brake's least margin alone
+    slip_time_percentiles_s: dict[str, float | None]   # None: beyond the duration (holds)
+    tyre_margin: float
+    values: dict[str, np.ndarray]                  # the draws
+    least_margin: np.ndarray                       # per draw of the calibrated model (alongside .values)
+    slip_time_s: np.ndarray                        # per draw of the calibrated model (NaN: holds)
+    detail: dict | None = None                     # shares of the band, beyond-the-data flags, models drawn
+
+    @property
+    def flags(self) -> list[str]:
+        """Where the question lies beyond what the bench tested (the band was widened for it)."""
+        return list((self.detail or {}).get("flags", []))
+
+    @property
+    def shares(self) -> dict[str, float]:
+        """Each part's share of the band's variance: parameters, choice of effects, model error."""
+        return dict((self.detail or {}).get("shares", {}))
+
+    def as_dict(self) -> dict:
+        return {"draws": self.draws, "rollaway_probability": self.rollaway_probability,
+                "least_margin_percentiles": self.least_margin_percentiles,
+                "brake_margin_percentiles": self.brake_margin_percentiles,
+                "slip_time_percentiles_s": self.slip_time_percentiles_s, "tyre_margin": self.tyre_margin,
+                **(self.detail or {})}
+
+    def band_words(self) -> str:
+        """One line: the band's parts and what lies beyond the data."""
+        sh = self.shares
+        parts = ", ".join(f"{k.replace('_', ' ')} {v:.0%}" for k, v in sh.items()) if sh else "no spread"
+        beyond = ("; BEYOND THE DATA: " + "; ".join(self.flags) + " (band widened)") if self.flags else ""
+        return f"band from {parts}{beyond}"
+
+    def _repr_html_(self) -> str:  # notebooks
+        from rollaway.display import result_html
+        rows = {"draws": self.draws, **{f"least margin {k}": v for k, v in self.least_margin_percentiles.items()},
+                **{f"slip time {k} [s]": v for k, v in self.slip_time_percentiles_s.items()}}
+        return result_html(f"roll-away probability {self.rollaway_probability:.3f}", rows,
+                           self.rollaway_probability < 0.05)
+
+    def draw_at_percentile(self, q: float) -> dict[str, float]:
+        """The drawn values whose least margin is closest to its *q*-th percentile."""
+        if not 0.0 <= q <= 100.0:
+            raise UserError(f"percentile {q:g} must be within 0–100, e.g. 5 for a pessimistic draw")
+        target = np.percentile(self.least_margin, q)
+        i = int(np.argmin(np.abs(self.least_margin - target)))
+        return {k: float(v[i]) for k, v in self.values.items()}
+
+
+def _least_margins(model: DrumModel, n: int, seed, force_N: float, sign: float, t_req_Nm: np.ndarray,
+                   initial_temp_C, duration_s: float):
+    """Parameter draws of *model* (none without a covariance) and each draw's least brake margin."""
+    from rollaway.hold import validate_hand_force
+    from rollaway.hold.numeric import MarginFunction, least_margin
+
+    vals = draw_values(model, n, seed) if model.covariance is not None else {}
+    mu = vals.get("mu_drum", np.full(n, model.params.mu_drum))
+    fn = MarginFunction(model, np.full(n, float(validate_hand_force(force_N))), np.full(n, float(sign)),
+                        t_req_Nm, mu, None, initial_temp_C, heat_transfer_W_m2K=vals.get("heat_transfer_W_m2K"),
+                        values={k: v for k, v in vals.items() if k not in LEGACY_FREE})
+    return vals, fn, least_margin(fn, duration_s)
+
+
+def _half_width(x: np.ndarray) -> float:
+    return 0.5 * float(np.percentile(x, 95) - np.percentile(x, 5)) if x.size else 0.0
+
+
+def rollaway_risk(model: DrumModel, *, hand_force_N: float, grade_pct: float, direction: str, occupants: int,
+                  duration_s: float, initial_temp_C: float | None = None, draws: int = 1000,
+                  seed: int | None = 0) -> Risk:
+    """Probability of a roll-away over [0, duration_s] and percentiles, from *draws* predictive draws.
+
+    Each draw is one model (the calibrated one, or a competing effect set by its weight), one
+    parameter vector from that model's covariance and one model error ε (the torque times 1 + ε,
+    widened outside the tested range; :mod:`rollaway.uncertainty.predictive`).  The band's parts are reported
+    as shares of its variance: parameters, choice of effects, model error.
+    """
+    from rollaway.hold import _effective, required_torque, tyre_adhesion_margin
+    from rollaway.hold.numeric import Subset, first_slip_time
+    from rollaway.uncertainty.predictive import extrapolation, model_error_draws
+
+    if not (isinstance(draws, (int, np.integer)) and 1 <= draws <= 1_000_000):
+        raise UserError(f"--uncertainty {draws} must be a whole number of draws from 1 to 1000000, e.g. 1000")
+    pred = model.predictive
+    if model.covariance is None and not pred:
+        draw_values(model, draws, seed)          # the error that says how to get a covariance
+    g, sign = _effective(grade_pct, direction)
+    t_req = float(required_torque(model.params, g, occupants))
+    t0 = model.params.initial_drum_temp_C if initial_temp_C is None else float(initial_temp_C)
+    factor, flags = extrapolation(pred, hand_force_N=float(hand_force_N), direction=direction, initial_temp_C=t0,
+                                  duration_s=float(duration_s))
+    rng = np.random.default_rng(seed)
+    eps = model_error_draws(pred, draws, factor, rng)
+    parts = [(1.0 - sum(w for w, _ in model.alternatives), model)] + list(model.alternatives)
+    counts = np.floor(np.array([w for w, _ in parts]) * draws).astype(int)
+    counts[0] += draws - counts.sum()
+    brake = np.empty(draws)
+    owner = np.repeat(np.arange(len(parts)), counts)
+    t_slip = np.full(draws, np.nan)
+    vals0 = {}
+    for k, ((_, m), c) in enumerate(zip(parts, counts)):
+        if c == 0:
+            continue
+        idx = np.flatnonzero(owner == k)
+        vals, fn, least = _least_margins(m, int(c), None if seed is None else seed + k, hand_force_N, sign,
+                                         t_req / (1.0 + eps[idx]), initial_temp_C, duration_s)
+        brake[idx] = least
+        if k == 0:
+            vals0 = vals
+        slips = np.flatnonzero(least < 1.0)      # only draws whose brake gives way have a slip time
+        if slips.size:
+            t_slip[idx[slips]] = first_slip_time(Subset(fn, slips), duration_s)
+    tyre = float(tyre_adhesion_margin(model.params, grade_pct, direction, occupants))
+    least = np.minimum(brake, tyre)
+    t_roll = np.where(tyre < 1.0, 0.0, t_slip)
+    pct = {f"p{q:g}": float(np.percentile(least, q, method="inverted_cdf")) for q in PERCENTILES}
+    pct_b = {f"p{q:g}": float(np.percentile(brake, q, method="inverted_cdf")) for q in PERCENTILES}
+    t_inf = np.where(np.isnan(t_roll), np.inf, t_roll)       # a draw that holds slips "after the duration"
+    tp = {f"p{q:g}": (lambda x: None if not np.isfinite(x) else float(x))(np.percentile(t_inf, q,
+                                                                                      method="inverted_cdf"))
+          for q in PERCENTILES}
+    no_eps = brake / (1.0 + eps)                  # the margin scales with the torque: ε divides out exactly
+    v_par = float(np.var(no_eps[owner == 0])) if counts[0] > 1 else 0.0
+    v_mix, v_all = float(np.var(no_eps)), float(np.var(brake))
+    total = max(v_all, 1e-300)
+    shares = {"parameters": min(v_par / total, 1.0), "choice_of_effects": max(v_mix - v_par, 0.0) / total,
+              "model_error": max(v_all - v_mix, 0.0) / total} if v_all > 0 else {}
+    detail = {"shares": shares, "flags": flags, "extrapolation_factor": factor,
+              "model_error_rel_sd": float(pred.get("model_error_rel_sd", 0.0)) * factor,
+              "models": [{"name": m.name, "weight": float(w), "draws": int(c)} for (w, m), c in zip(parts, counts)],
+              "half_width": _half_width(least)}
+    main = owner == 0
+    return Risk(draws, float(np.mean(least < 1.0)), pct, pct_b, tp, tyre, vals0, least[main], t_roll[main],
+                detail)
+
+
+def least_force_band(model: DrumModel, grades_pct, direction: str, occupants: int, duration_s: float,
+                     initial_temp_C: float | None = None, draws: int = 100, seed: int | None = 0) -> dict:
+    """5/50/95 percentiles of the least hand force that holds [N] at each grade, over predictive draws
+    (parameters, competing effect sets, model error — as :func:`rollaway_risk`); NaN where the rear tyres
+    slide or no force holds."""
+    from rollaway.hold import _effective, required_torque, tyre_adhesion_margin
+    from rollaway.hold.numeric import MarginFunction, least_hand_force
+    from rollaway.uncertainty.predictive import extrapolation, model_error_draws
+
+    grades = np.atleast_1d(np.asarray(grades_pct, float))
+    rng = np.random.default_rng(seed)
+    t0 = model.params.initial_drum_temp_C if initial_temp_C is None else float(initial_temp_C)
+    factor, _ = extrapolation(model.predictive, hand_force_N=float(np.mean(model.predictive.get(
+        "tested_hand_force_N", [250.0, 250.0]))), direction=direction, initial_temp_C=t0, duration_s=duration_s)
+    parts = [(1.0 - sum(w for w, _ in model.alternatives), model)] + list(model.alternatives)
+    counts = np.floor(np.array([w for w, _ in parts]) * draws).astype(int)
+    counts[0] += draws - counts.sum()
+    forces = []
+    for k, ((_, m), c) in enumerate(zip(parts, counts)):
+        if c == 0:
+            continue
+        vals = draw_values(m, int(c), None if seed is None else seed + k) if m.covariance is not None else {}
+        eps = model_error_draws(model.predictive, int(c), factor, rng)
+        g, sign = _effective(grades, direction)
+        t_req = np.asarray(required_torque(m.params, g, occupants), float)
+        rep = lambda a: np.repeat(np.asarray(a, float)[:, None], grades.size, axis=1).ravel()  # noqa: E731
+        mu = rep(vals.get("mu_drum", np.full(c, m.params.mu_drum)))
+        h = rep(vals.get("heat_transfer_W_m2K", np.full(c, m.params.heat_transfer_W_m2K)))
+        fn = MarginFunction(m, np.zeros(c * grades.size), np.tile(np.broadcast_to(sign, grades.shape), c),
+                            (t_req[None, :] / (1.0 + eps[:, None])).ravel(), mu, None, t0, heat_transfer_W_m2K=h,
+                            values={n: rep(v) for n, v in vals.items() if n not in LEGACY_FREE})
+        forces.append(least_hand_force(fn, duration_s).reshape(c, grades.size))
+    f = np.concatenate(forces, axis=0)
+    f = np.where(np.isfinite(f), f, np.nan)
+    tyre = np.asarray(tyre_adhesion_margin(model.params, grades, direction, occupants), float)
+    with np.errstate(all="ignore"):
+        pct = {f"p{q:g}": np.where(tyre >= 1.0, np.nanpercentile(f, q, axis=0), np.nan) for q in PERCENTILES}
+    return pct

@@ -1,0 +1,53 @@
+"""A predictive record in use: model-error draws, widened for questions beyond the tested range.
+
+The record itself (the model file's ``[predictive]`` table) is :mod:`rollaway.model.predictive_record`;
+:func:`extrapolation` says how far a road question lies outside the tested range (and flags
+it); :func:`model_error_draws` turns the record into one multiplicative torque error per draw.
+"""
+from __future__ import annotations
+
+import numpy as np
+
+from rollaway.model.predictive_record import KEYS, record, validate  # noqa: F401  (the record, read here too)
+
+SPAN_FLOOR = {"hand_force_N": 50.0, "initial_temp_C": 50.0}     # a single tested value still has a scale [assumed]
+TOLERANCE = 0.02             # within 2 % of the span of a tested edge counts as tested
+
+
+def extrapolation(pred: dict, *, hand_force_N: float, direction: str, initial_temp_C: float,
+                  duration_s: float) -> tuple[float, list[str]]:
+    """(factor ≥ 1 on the model error, flags) for a road question against the tested range."""
+    factor, flags = 1.0, []
+    for key, value, unit in (("hand_force_N", hand_force_N, "N"), ("initial_temp_C", initial_temp_C, "°C")):
+        rng = pred.get(f"tested_{key}")
+        if rng is None:
+            continue
+        lo, hi = rng
+        span = max(hi - lo, SPAN_FLOOR[key])
+        dist = max(lo - value, value - hi, 0.0)
+        if dist > TOLERANCE * span:
+            name = "hand force" if key == "hand_force_N" else "start temperature T_0"
+            flags.append(f"{name} {value:g} {unit} is outside the tested {lo:g}–{hi:g} {unit}")
+            factor += dist / span
+    dirs = pred.get("tested_directions")
+    if dirs and direction not in dirs:
+        flags.append(f"facing {direction} was not tested (only {', '.join(dirs)})")
+        factor += 1.0
+    t_max = pred.get("tested_duration_s")
+    if t_max and duration_s > (1 + TOLERANCE) * t_max:
+        flags.append(f"a hold of {duration_s:g} s is longer than the bench's {t_max:g} s")
+        factor += (duration_s - t_max) / t_max
+    return factor, flags
+
+
+def model_error_draws(pred: dict, n: int, factor: float, rng: np.random.Generator) -> np.ndarray:
+    """n multiplicative torque errors ε (torque × (1 + ε)), Student-t with the record's dof, scaled by *factor*."""
+    sd = float(pred.get("model_error_rel_sd", 0.0)) * factor
+    if sd <= 0.0:
+        return np.zeros(n)
+    dof = max(int(pred.get("model_error_dof", 1)), 1)
+    eps = sd * rng.standard_t(dof, n)
+    return np.clip(eps, -0.9, 9.0)       # a torque never changes sign through its model error
+
+
+__all__ = ["extrapolation", "model_error_draws", "record", "validate"]

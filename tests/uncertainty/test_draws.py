@@ -1,0 +1,92 @@
+"""Roll-away probability from the fitted covariance, against an independent Monte Carlo on a known truth."""
+import numpy as np
+import pytest
+from scipy import optimize, stats
+
+from rollaway import hold
+from rollaway.errors import UserError
+from rollaway.model.drum_model import Covariance, DrumModel
+from rollaway.uncertainty.draws import draw_values, rollaway_risk
+
+CASE = dict(grade_pct=30.0, direction="downhill", occupants=5, duration_s=3600.0)
+
+
+def creep(fraction, sd):
+    m = DrumModel("paper", ["lining_creep"], {"lining_creep.relaxed_fraction": fraction,
+                                              "lining_creep.relaxation_time_s": 900.0})
+    m.covariance = Covariance(("lining_creep.relaxed_fraction",), np.array([[sd ** 2]]))
+    return m
+
+
+@pytest.mark.parametrize("force", [230.0, 245.0, 260.0])
+def test_probability_matches_the_exact_probability_of_the_known_truth(force):
+    """One uncertain value whose least margin falls monotonically: P(roll) = P(c > c*) exactly."""
+    mean, sd = 0.15, 0.03
+    m = creep(mean, sd)
+
+    def least(c):
+        return float(hold.min_brake_margin(m.with_values({"lining_creep.relaxed_fraction": c}), force,
+                                           CASE["grade_pct"], CASE["direction"], CASE["occupants"],
+                                           CASE["duration_s"])) - 1.0
+    lo, hi = m.bounds("lining_creep.relaxed_fraction")
+    trunc = stats.truncnorm((lo - mean) / sd, (hi - mean) / sd, loc=mean, scale=sd)
+    if least(lo + 1e-9) < 0:
+        exact = 1.0
+    elif least(hi) > 0:
+        exact = 0.0
+    else:
+        exact = trunc.sf(optimize.brentq(least, lo + 1e-9, hi, xtol=1e-12))
+    n = 4000
+    risk = rollaway_risk(m, hand_force_N=force, draws=n, seed=11, **CASE)
+    se = np.sqrt(max(exact * (1 - exact), 1e-4) / n)
+    assert abs(risk.rollaway_probability - exact) < 4 * se + 1e-3
+    assert risk.least_margin_percentiles["p5"] <= risk.least_margin_percentiles["p50"] <= \
+        risk.least_margin_percentiles["p95"]
+
+
+def test_probabilities_at_the_acceptance_margins():
+    """A tight calibration: ≥ 0.95 where the truth ends at margin 0.93, ≤ 0.05 where it ends at 1.07."""
+    m = creep(0.15, 0.004)
+    f_one = float(hold.minimum_hand_force_N(m, CASE["grade_pct"], CASE["direction"], CASE["occupants"],
+                                            CASE["duration_s"]))
+    low = rollaway_risk(m, hand_force_N=f_one * 0.93, draws=1000, **CASE)
+    high = rollaway_risk(m, hand_force_N=f_one * 1.07, draws=1000, **CASE)
+    assert low.rollaway_probability >= 0.95 and high.rollaway_probability <= 0.05
+    assert low.slip_time_percentiles_s["p50"] is not None and high.slip_time_percentiles_s["p50"] is None
+
+
+def test_draws_respect_bounds_and_the_covariance():
+    m = DrumModel("paper", ["lining_creep"], {"lining_creep.relaxed_fraction": 0.01})
+    m.covariance = Covariance(("mu_drum", "lining_creep.relaxed_fraction"),
+                              np.array([[4e-4, 1e-5], [1e-5, 1e-4]]))
+    v = draw_values(m, 20000, seed=3)
+    assert v["lining_creep.relaxed_fraction"].min() >= 0.0      # bound at 0 (the mean is 1 σ above it)
+    x = np.stack([v["mu_drum"], v["lining_creep.relaxed_fraction"]])
+    assert np.std(v["mu_drum"]) == pytest.approx(0.02, rel=0.05)
+    assert np.mean(v["mu_drum"]) == pytest.approx(0.4, abs=1e-3) and x.shape == (2, 20000)
+
+
+def test_no_covariance_is_a_clear_error():
+    with pytest.raises(UserError, match="has no \\[covariance\\]"):
+        rollaway_risk(DrumModel("paper"), hand_force_N=300, draws=10, **CASE)
+
+
+def test_cli_hold_reports_the_probability(run_cli, tmp_path):
+    from rollaway.model.model_file import save_model
+    path = save_model(creep(0.15, 0.01), tmp_path / "m.toml")
+    import json
+    code, out, _ = run_cli("hold", "--params", path, "--grade-pct", 30, "--hand-force-N", 200, "--occupants", 5,
+                           "--uncertainty", 300, "--format", "json")
+    doc = json.loads(out)
+    assert code == 1 and doc["uncertainty"]["rollaway_probability"] == 1.0 and doc["uncertainty"]["draws"] == 300
+    code, _, err = run_cli("hold", "--grade-pct", 30, "--hand-force-N", 200, "--uncertainty", 300)
+    assert code == 2 and "covariance" in err
+
+
+def test_results_show_in_notebooks():
+    v = hold.analytic_verdict(DrumModel("paper"), hand_force_N=120, duration_s=600, **{k: CASE[k] for k in (
+        "grade_pct", "direction", "occupants")})
+    assert "ROLLS AWAY" in v._repr_html_() and "<table>" in v._repr_html_()
+    r = rollaway_risk(creep(0.15, 0.01), hand_force_N=200, draws=50, **CASE)
+    assert "roll-away probability 1.000" in r._repr_html_()
+    assert "lining_creep.relaxed_fraction" in creep(0.15, 0.01)._repr_html_()
