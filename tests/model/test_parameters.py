@@ -42,7 +42,7 @@ def test_unknown_named_set():
 def test_every_parameter_has_a_finite_documented_range():
     import math
     from pathlib import Path
-    page = (Path(__file__).resolve().parents[1] / "docs" / "parameters.md").read_text(encoding="utf-8")
+    page = (Path(__file__).resolve().parents[2] / "docs" / "parameters.md").read_text(encoding="utf-8")
     for s in SPECS:
         assert math.isfinite(s.lower) and math.isfinite(s.upper) and s.lower <= s.value <= s.upper, s.name
         assert f"| `{s.name}` | {s.lower:g} … {s.upper:g} | {s.unit} |" in page, f"docs/parameters.md range of {s.name}"
