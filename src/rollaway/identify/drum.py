@@ -37,7 +37,7 @@ from rollaway.model.drum_model import Covariance
 from rollaway.model.parameters import BrakeParameters, load_parameters
 
 MIN_SINGULAR_VALUE = 3.0       # data must determine a direction to ≤ 1/3 of the assumed spread [assumed]
-CONFOUND_LOADING = 0.3         # |loading| on the weak direction that counts as "confounded with"
+CONFOUND_LOADING = 0.3         # share of the weak direction (|loading|·column norm) that counts as "confounded with"
 FIX_FIRST = ("ambient_temp_C", "shoe_arm_ratio", "u6_offset_m", "u6_slope_m_per_N", "heat_transfer_W_m2K",
              "mu_drum")        # among near-equal loadings, fix the earlier one (keep the torque scale longest)
 
@@ -280,7 +280,10 @@ def _weakest(fit: FitResult, names: list[str]):
     v = np.abs(vt[-1])
     big = [names[i] for i in np.flatnonzero(v >= 0.7 * v.max())]
     drop = min(big, key=FIX_FIRST.index)
-    confounded = [names[i] for i in np.flatnonzero(v >= CONFOUND_LOADING * v.max()) if names[i] != drop]
+    # what each parameter puts into the near-null combination j·v: |v_i|·‖j_i‖ (loadings alone favour the
+    # column with the smaller scale: two exactly collinear columns of scales 1 and 6 load 0.99 and 0.16)
+    part = v * np.linalg.norm(j, axis=0)
+    confounded = [names[i] for i in np.flatnonzero(part >= CONFOUND_LOADING * part.max()) if names[i] != drop]
     if others:      # the effect parameters that share the direction
         a = jall[:, others]
         w = np.linalg.lstsq(a, jall[:, cols] @ vt[-1], rcond=None)[0]
