@@ -4,8 +4,8 @@
  * G is tabulated once (radiation_cooling_setup) on the same log grid as the Python code
  * (1500 points, trapezoid rule) and inverted by linear interpolation, so both give the same numbers.
  * Python: rollaway/effects/radiation_cooling.py */
-#define RADIATION_GRID 1500
 /* @members */
+#define RADIATION_GRID 1500               /* points of the table, as n_grid in Python */
     double radiation_s[RADIATION_GRID];   /* log grid s = ln(T - T_a) */
     double radiation_g[RADIATION_GRID];   /* G(s) [s] */
     double radiation_f0;                  /* the integrand at the grid's lower end (pure convection) */
