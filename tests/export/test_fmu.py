@@ -1,0 +1,178 @@
+"""The FMU file: `rollaway export-fmu`, FMPy's validation, a run where rollaway cannot be imported,
+calibrated models from `diagnose --save-model` against `rollaway brake`, and one-line errors."""
+import io
+import subprocess
+import sys
+import zipfile
+from pathlib import Path
+
+import numpy as np
+import pytest
+from fmpy.validation import validate_fmu
+
+from rollaway.model.drum_model import DrumModel
+from tests.export.conftest import TIMES_S, assert_same, simulate
+
+ROOT = Path(__file__).resolve().parents[2]
+EXAMPLES = ROOT / "examples" / "identify"
+
+
+@pytest.fixture(scope="module")
+def calibrated(tmp_path_factory):
+    """Models calibrated by diagnose on the bundled bench data (a hidden effect; a downhill-only own drum)."""
+    import rollaway
+    out = tmp_path_factory.mktemp("calibrated")
+    return {name: rollaway.diagnose(EXAMPLES / f"{name}.csv").save_model(out / f"{name}.toml")
+            for name in ("bench-hidden-effect", "bench-own-drum-downhill")}
+
+
+def brake_cli(run_cli, params, force, direction, t0=None):
+    """`rollaway brake --format csv` as columns."""
+    args = ["brake", "--hand-force-N", force, "--direction", direction, "--dt-s", 60, "--format", "csv",
+            "--params", params] + (["--t0-C", t0] if t0 is not None else [])
+    code, out, err = run_cli(*args)
+    assert code == 0, err
+    return np.genfromtxt(io.StringIO(out), delimiter=",", names=True)
+
+
+def test_cli_writes_a_valid_fmu(run_cli, tmp_path):
+    out = tmp_path / "sub" / "paper.fmu"
+    code, text, err = run_cli("export-fmu", out)
+    assert code == 0, err
+    assert "wrote" in text
+    assert validate_fmu(str(out)) == []
+    names = zipfile.ZipFile(out).namelist()
+    assert {"modelDescription.xml", "binaries/linux64/rollaway_drum.so", "sources/rollaway_drum.c",
+            "sources/rollaway_drum.h", "sources/fmi2_cosim.c", "sources/fmi2Functions.h"} <= set(names)
+
+
+@pytest.mark.parametrize("name", ["bench-hidden-effect", "bench-own-drum-downhill"])
+def test_calibrated_models_reproduce_rollaway_brake(run_cli, tmp_path, calibrated, name):
+    model_file = calibrated[name]
+    fmu = tmp_path / "cal.fmu"
+    code, _, err = run_cli("export-fmu", "--params", model_file, fmu)
+    assert code == 0, err
+    assert validate_fmu(str(fmu)) == []
+    for direction in ("downhill", "uphill"):
+        for force, t0 in ((180.0, 150.0), (400.0, 250.0)):
+            ref = brake_cli(run_cli, model_file, force, direction, t0)
+            r = simulate(fmu, hand_force_N=force, uphill=direction == "uphill", initial_drum_temp_C=t0)
+            np.testing.assert_array_equal(r["time"], ref["time_s"])
+            for ours, theirs in (("torque_Nm", "torque_Nm"), ("drum_temp_C", "drum_temp_C"),
+                                 ("clamp_force_N", "normal_force_N")):
+                np.testing.assert_allclose(r[ours], ref[theirs], rtol=1e-6, err_msg=f"{name} {direction} {ours}")
+
+
+def test_a_calibrated_model_keeps_its_values_and_provenance(tmp_path, calibrated):
+    from fmpy import read_model_description
+    import rollaway
+    model = DrumModel(calibrated["bench-hidden-effect"])
+    fmu = rollaway.export_fmu(model, tmp_path / "cal.fmu")
+    md = read_model_description(str(fmu))
+    var = {v.name: v for v in md.modelVariables}
+    assert float(var["mu_drum"].start) == model.params.mu_drum                    # the exact double
+    assert "calibrated (fitted" in var["mu_drum"].description
+    for key, value in model.values.items():
+        assert float(var[key].start) == value and var[key].variability == "constant"
+    assert var["hand_force_N"].causality == "parameter" and var["facing_uphill"].type == "Boolean"
+    assert var["torque_Nm"].causality == "output" and var["torque_Nm"].unit == "N.m"
+    assert var["initial_drum_temp_C"].unit == "degC" and float(var["initial_drum_temp_C"].start) == 200.0
+    xml = zipfile.ZipFile(fmu).read("modelDescription.xml").decode()
+    assert 'data_file="bench-hidden-effect.csv"' in xml and f'rollaway_version="{rollaway.__version__}"' in xml
+    assert 'verdict="lining_creep"' in xml and "bench-hidden-effect.csv" in md.description
+    assert_same(simulate(fmu), model.evaluate(TIMES_S, 400.0, "downhill"))
+
+
+def test_calibrated_values_cannot_be_set(tmp_path):
+    import fmpy
+    from rollaway.export import export_fmu
+    path = export_fmu("paper", tmp_path / "p.fmu")
+    with pytest.raises(Exception, match="mu_drum"):        # FMPy refuses to set a constant
+        fmpy.simulate_fmu(str(path), stop_time=60, start_values={"mu_drum": 0.5})
+
+
+def test_the_fmu_refuses_a_parameter_out_of_range(tmp_path):
+    import fmpy
+    from rollaway.export import export_fmu
+    path = export_fmu("paper", tmp_path / "p.fmu")
+    logged = []
+    with pytest.raises(Exception):
+        fmpy.simulate_fmu(str(path), stop_time=60, start_values={"hand_force_N": -5.0},
+                          logger=lambda *a: logged.append(a))
+    assert any(b"hand_force_N = -5" in (m if isinstance(m, bytes) else str(m).encode()) for a in logged for m in a)
+
+
+CHILD = """
+import sys
+sys.modules['rollaway'] = None              # any 'import rollaway' now fails
+import fmpy, numpy
+r = fmpy.simulate_fmu(sys.argv[1], stop_time=3600, output_interval=600,
+                      start_values={'hand_force_N': 300.0, 'facing_uphill': True})
+try:
+    import rollaway
+    print('rollaway importable')
+except ImportError:
+    print(' '.join(repr(float(x)) for x in r['torque_Nm']))
+"""
+
+
+def test_the_fmu_runs_where_rollaway_cannot_be_imported(tmp_path):
+    from rollaway.export import export_fmu
+    model = DrumModel("paper", effects=["radiation_cooling", "lining_creep"],
+                      values={"radiation_cooling.emissivity": 0.7, "lining_creep.relaxed_fraction": 0.1})
+    fmu = export_fmu(model, tmp_path / "alone.fmu")
+    proc = subprocess.run([sys.executable, "-I", "-c", CHILD, str(fmu)], capture_output=True, text=True,
+                          cwd=tmp_path, timeout=120)
+    assert proc.returncode == 0, proc.stderr
+    got = np.array([float(x) for x in proc.stdout.split()])
+    ref = model.evaluate(np.arange(0, 3601, 600.0), 300.0, "uphill").torque_Nm
+    np.testing.assert_allclose(got, ref, rtol=1e-6)
+
+
+def test_the_binary_needs_only_the_c_library(tmp_path):
+    from rollaway.export import export_fmu
+    fmu = export_fmu("paper", tmp_path / "p.fmu")
+    so = tmp_path / "rollaway_drum.so"
+    so.write_bytes(zipfile.ZipFile(fmu).read("binaries/linux64/rollaway_drum.so"))
+    needed = subprocess.run(["objdump", "-p", str(so)], capture_output=True, text=True).stdout
+    libs = {ln.split()[-1] for ln in needed.splitlines() if "NEEDED" in ln}
+    assert libs <= {"libm.so.6", "libc.so.6"}, libs
+
+
+def one_line_error(run_cli, *args):
+    code, _, err = run_cli(*args)
+    assert code == 2 and "Traceback" not in err and len(err.strip().splitlines()) == 1, err
+    return err
+
+
+def test_a_plugin_effect_cannot_be_exported(run_cli, tmp_path):
+    plugin = tmp_path / "ratchet_slip_effect.py"
+    plugin.write_text((EXAMPLES / "ratchet_slip_effect.py").read_text())
+    model = tmp_path / "with-plugin.toml"
+    model.write_text('extends = "paper"\n\n[effects.ratchet_slip]\nplugin = "ratchet_slip_effect.py"\nslip_m = 5e-6\n')
+    err = one_line_error(run_cli, "export-fmu", "--params", model, tmp_path / "x.fmu")
+    assert "ratchet_slip" in err and "ratchet_slip_effect.py" in err and "plugin" in err
+    assert not (tmp_path / "x.fmu").exists()
+
+
+def test_without_gcc_a_one_line_error(run_cli, tmp_path, monkeypatch):
+    monkeypatch.setenv("PATH", str(tmp_path))
+    err = one_line_error(run_cli, "export-fmu", tmp_path / "x.fmu")
+    assert "gcc" in err and "install" in err
+
+
+@pytest.mark.parametrize("args, words", [
+    (["x.zip"], [".fmu"]),
+    (["--params", "paper", "--stop-time-s", "0", "x.fmu"], ["--stop-time-s"]),
+])
+def test_bad_arguments(run_cli, tmp_path, args, words):
+    err = one_line_error(run_cli, "export-fmu", *[str(tmp_path / a) if a.startswith("x.") else a for a in args])
+    for w in words:
+        assert w in err
+
+
+def test_a_self_locking_model_is_refused(run_cli, tmp_path):
+    model = tmp_path / "locks.toml"
+    model.write_text('extends = "paper"\nmu_drum = 1.3\n')
+    err = one_line_error(run_cli, "export-fmu", "--params", model, tmp_path / "x.fmu")
+    assert "self-locks" in err and "mu_drum" in err
