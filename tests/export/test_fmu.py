@@ -176,3 +176,18 @@ def test_a_self_locking_model_is_refused(run_cli, tmp_path):
     model.write_text('extends = "paper"\nmu_drum = 1.3\n')
     err = one_line_error(run_cli, "export-fmu", "--params", model, tmp_path / "x.fmu")
     assert "self-locks" in err and "mu_drum" in err
+
+
+def test_radiation_from_below_the_ambient_is_refused(tmp_path):
+    """The radiation table covers a drum cooling down; a start below the ambient is an FMU error, not a
+    wrong temperature."""
+    import fmpy
+    from rollaway.export import export_fmu
+    model = DrumModel("paper", effects=["radiation_cooling"], values={"radiation_cooling.emissivity": 0.8})
+    path = export_fmu(model, tmp_path / "r.fmu")
+    logged = []
+    with pytest.raises(Exception):
+        fmpy.simulate_fmu(str(path), stop_time=60, start_values={"initial_drum_temp_C": 10.0},
+                          logger=lambda *a: logged.append(a))
+    assert any(b"below ambient_temp_C" in (m if isinstance(m, bytes) else str(m).encode()) for a in logged for m in a)
+    assert simulate(path, initial_drum_temp_C=27.0)["drum_temp_C"][-1] == 27.0      # at the ambient: stays

@@ -7,7 +7,8 @@ rounding of ``exp``), each step with its equation number, and the hooks of the m
 effects at the place the Python chain calls them, in the model's effect order.  Each catalogue
 effect's hooks are C functions in ``c/effects/NAME.c`` beside this module, named ``NAME_HOOK``
 (the arguments: the state, the quantity, the effect's parameters in their declared order);
-``NAME_setup`` (optional) runs once the parameters are known, and lines between
+``NAME_setup`` (optional) runs once the parameters are known, ``NAME_check`` (optional) refuses
+parameter values the effect does not cover, and lines between
 ``/* @members */`` and ``/* @end */`` are fields the effect keeps in the instance.
 """
 from __future__ import annotations
@@ -183,6 +184,8 @@ def _accessors(model) -> str:
               f"s->{v.name});\n        return 1;\n    }}" for v in reals]
     setups = [f"    {e.name}_setup(s, {', '.join(f'{e.name}_{p.name}' for p in e.parameters)});"
               for e, _ in model.active() if re.search(rf"\b{e.name}_setup\s*\(", c_text(f"effects/{e.name}.c"))]
+    checks += [f"    if ({e.name}_check(s, why, size) != 0) return 1;" for e, _ in model.active()
+               if re.search(rf"\b{e.name}_check\s*\(", c_text(f"effects/{e.name}.c"))]
 
     def switch(head: str, cases: list[str]) -> str:
         return head + "\n{\n    switch (vr) {\n" + "\n".join(cases) + "\n    default: return 1;\n    }\n}\n"

@@ -29,6 +29,16 @@ static double radiation_interp(double x, const double *xp, const double *fp, int
     return slope * (x - xp[lo]) + fp[lo];
 }
 
+/* The table runs from T_0 down to T_a: a drum warming up from below the ambient is not covered
+ * (rollaway's Python gives T_a - 0.1 mK there from t = 0 on); the FMU refuses it. */
+static int radiation_cooling_check(const DrumState *s, char *why, int size)
+{
+    if (s->initial_drum_temp_C >= s->ambient_temp_C) return 0;
+    snprintf(why, (size_t)size, "radiation_cooling: initial_drum_temp_C = %g is below ambient_temp_C = %g; the "
+             "radiation law covers a drum cooling down only", s->initial_drum_temp_C, s->ambient_temp_C);
+    return 1;
+}
+
 static void radiation_cooling_setup(DrumState *s, double emissivity)
 {
     double ta = s->ambient_C, heat_capacity_J_K = drum_density_kg_m3 * drum_specific_heat_J_kgK * drum_volume_m3;
