@@ -1,37 +1,7 @@
-"""FMUs exported once per test module, and FMPy runs of them."""
-import shutil
-
-import numpy as np
 import pytest
-
-fmpy = pytest.importorskip("fmpy", reason="the fmu extra (FMPy) is not installed: pip install -e '.[test]'")
-if shutil.which("gcc") is None:
-    pytest.skip("gcc is not installed: the FMU's binary cannot be built", allow_module_level=True)
-
-TIMES_S = np.arange(0.0, 3601.0, 60.0)
-
-
-def simulate(fmu, *, hand_force_N=400.0, uphill=False, initial_drum_temp_C=None, ambient_temp_C=None,
-             stop_time_s=3600.0, output_interval_s=60.0):
-    """One FMPy co-simulation run of *fmu*; the structured result array."""
-    start = {"hand_force_N": hand_force_N, "facing_uphill": uphill}
-    if initial_drum_temp_C is not None:
-        start["initial_drum_temp_C"] = initial_drum_temp_C
-    if ambient_temp_C is not None:
-        start["ambient_temp_C"] = ambient_temp_C
-    return fmpy.simulate_fmu(str(fmu), stop_time=stop_time_s, output_interval=output_interval_s, start_values=start)
-
-
-def assert_same(result, series, rtol=1e-6):
-    """FMU outputs against a BrakeSeries, relative to each value (near-zero values to the series' scale)."""
-    for name, ref in (("torque_Nm", series.torque_Nm), ("drum_temp_C", series.drum_temp_C),
-                      ("clamp_force_N", series.normal_force_N), ("lining_temp_C", series.lining_temp_C)):
-        got = result[name]
-        scale = np.maximum(np.abs(ref), 1e-9 * np.max(np.abs(ref)))
-        err = np.max(np.abs(got - ref) / scale)
-        assert err <= rtol, (name, err)
 
 
 @pytest.fixture(scope="session")
 def export_dir(tmp_path_factory):
+    """One folder for the FMUs a test session exports."""
     return tmp_path_factory.mktemp("fmus")

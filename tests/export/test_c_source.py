@@ -11,7 +11,7 @@ from rollaway.effects import CATALOGUE
 from rollaway.export import export_fmu
 from rollaway.export.c_source import effect_hooks_in_c, has_c_effect
 from rollaway.model.drum_model import DrumModel
-from tests.export.conftest import TIMES_S, assert_same, simulate
+from tests.export.fmu_runs import TIMES_S, assert_same, simulate
 
 # a visible, realistic value of every parameter (the catalogue's 'typical'), curvature too
 VALUES = {f"{n}.{k}": v for n, cls in CATALOGUE.items() for k, v in cls.typical_values().items()}
