@@ -72,7 +72,7 @@ def test_a_calibrated_model_keeps_its_values_and_provenance(tmp_path, calibrated
     md = read_model_description(str(fmu))
     var = {v.name: v for v in md.modelVariables}
     assert float(var["mu_drum"].start) == model.params.mu_drum                    # the exact double
-    assert "calibrated (fitted" in var["mu_drum"].description
+    assert "calibration: fitted" in var["mu_drum"].description
     for key, value in model.values.items():
         assert float(var[key].start) == value and var[key].variability == "constant"
     assert var["hand_force_N"].causality == "parameter" and var["facing_uphill"].type == "Boolean"

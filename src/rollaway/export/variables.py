@@ -54,6 +54,18 @@ def fmi_unit(unit: str) -> str:
     return UNITS[unit][0] if unit in UNITS else "1"
 
 
+def _source(model, name: str, value: float) -> str:
+    """Where a brake parameter's value came from: the calibration's words, the model file, or the paper set."""
+    spec = SPEC_BY_NAME[name]
+    calibration = getattr(model, "calibration", {}) or {}
+    said = calibration.get(name) or calibration.get("shoe_arm_ratio" if name == "shoe_arm_friction_m" else "")
+    if said:
+        return f"calibration: {said}"
+    if value != spec.value:
+        return f"the model file (paper set: {spec.value:g} {spec.unit}, {spec.source})"
+    return spec.source
+
+
 def parameters(model) -> list[Variable]:
     """The settable parameters, started at the model's own values (400 N: FMVSS 135 / UN R13-H)."""
     p = model.params
@@ -66,7 +78,8 @@ def parameters(model) -> list[Variable]:
                  "drum temperature T_0 when the lever is applied (eq. 10)", p.initial_drum_temp_C, temp.lower,
                  temp.upper),
         Variable("ambient_temp_C", 3, "Real", "parameter", "fixed", "degC",
-                 "ambient temperature T_amb the drum cools towards (eq. 10)", p.ambient_temp_C, amb.lower, amb.upper),
+                 "ambient temperature T_amb the drum cools towards (eq. 10); start: the model's, "
+                 + _source(model, "ambient_temp_C", p.ambient_temp_C), p.ambient_temp_C, amb.lower, amb.upper),
         Variable("facing_uphill", 4, "Boolean", "parameter", "fixed", "",
                  "true: the car faces uphill (eq. 19), false: downhill (eq. 18)", False),
     ]
@@ -88,18 +101,11 @@ OUTPUTS = (
 def constants(model) -> list[Variable]:
     """The model's values, read-only: the chain's brake parameters (100+) and the effects' (200+)."""
     p = model.params
-    calibration = getattr(model, "calibration", {}) or {}
     out = []
     for k, name in enumerate(CHAIN_PARAMETERS):
         spec = SPEC_BY_NAME[name]
         value = float(getattr(p, name))
-        source = calibration.get(name) or calibration.get("shoe_arm_ratio" if name == "shoe_arm_friction_m" else "")
-        if source:
-            source = f"calibrated ({source})"
-        elif value != spec.value:
-            source = f"the model file (paper set: {spec.value:g} {spec.unit}, {spec.source})"
-        else:
-            source = spec.source
+        source = _source(model, name, value)
         out.append(Variable(name, 100 + k, "Real", "local", "constant", fmi_unit(spec.unit),
                             f"{spec.symbol + ': ' if spec.symbol else ''}{spec.description}; source: {source}",
                             value))
