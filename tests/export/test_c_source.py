@@ -105,3 +105,19 @@ def test_the_result_does_not_depend_on_the_communication_step(export_dir):
     coarse = simulate(fmu, output_interval_s=600.0)
     at = np.searchsorted(fine["time"], coarse["time"])
     np.testing.assert_allclose(fine["torque_Nm"][at], coarse["torque_Nm"], rtol=1e-12)
+
+
+@pytest.mark.parametrize("seed", range(8))
+def test_random_models_anywhere_in_the_bounds(export_dir, seed):
+    """Random subsets of the catalogue in random order, every value drawn within its bounds (clips and
+    floors of the effects included), with random brake parameters: the C chain still equals the Python one."""
+    rng = np.random.default_rng(seed)
+    names = list(rng.permutation(sorted(CATALOGUE))[:rng.integers(1, len(CATALOGUE) + 1)])
+    values = {f"{n}.{p.name}": float(rng.uniform(p.lower, p.upper)) for n in names for p in CATALOGUE[n].parameters}
+    model = DrumModel("paper", effects=names, values=values).replace_params(
+        mu_drum=float(rng.uniform(0.25, 0.6)), heat_transfer_W_m2K=float(rng.uniform(15, 80)),
+        u6_slope_m_per_N=float(rng.uniform(3e-7, 5e-7)), ambient_temp_C=float(rng.uniform(-10, 40)))
+    fmu = export_fmu(model, export_dir / f"random-{seed}.fmu")
+    cases = [(bool(rng.integers(2)), float(rng.uniform(50, 1200)), float(rng.uniform(60, 450)), None)
+             for _ in range(3)]
+    check(model, fmu, cases)
