@@ -9,6 +9,7 @@ from __future__ import annotations
 
 import datetime as _dt
 import xml.etree.ElementTree as ET
+from pathlib import Path
 
 from rollaway.export.c_source import MODEL_IDENTIFIER
 from rollaway.export.variables import UNITS, Variable, all_variables
@@ -27,6 +28,10 @@ def provenance(model) -> dict[str, str]:
             value = model.predictive[key]
             out[key] = " to ".join(map(str, value)) if isinstance(value, list) and key != "tested_directions" \
                 else (", ".join(value) if isinstance(value, list) else str(value))
+    alternatives = (model.predictive or {}).get("alternatives") or []
+    if alternatives:          # the FMU is the point model: competing effect sets and bands stay in rollaway
+        out["alternatives_not_exported"] = ", ".join(f"{Path(a['file']).name} (weight {a['weight']:.3g})"
+                                                     for a in alternatives)
     out["exported_by"] = f"rollaway {__version__}"
     out.setdefault("rollaway_version", __version__)
     return out
