@@ -48,7 +48,14 @@ def _c_double(x: float) -> str:
     return s if any(c in s for c in ".e") else s + ".0"
 
 
+ASCII = {"ρ": "rho", "μ": "mu", "α": "alpha", "τ": "tau", "ε": "eps", "σ": "sigma", "Δ": "d", "≈": "~", "–": "-",
+         "—": "-", "§": "sec. ", "·": "*", "×": "x", "²": "2", "³": "3", "⁴": "4", "₀": "0", "°": "deg", "±": "+/-",
+         "≤": "<=", "≥": ">=", "−": "-", "é": "e", "í": "i"}
+
+
 def _c_string(s: str) -> str:
+    """Text for a C comment: ASCII (any compiler, any code page), no comment delimiters."""
+    s = "".join(ASCII.get(c, c) for c in s)
     return s.encode("ascii", "replace").decode().replace("*/", "* /").replace("/*", "/ *")
 
 
@@ -91,9 +98,9 @@ int drum_set_boolean(DrumState *s, unsigned int vr, int value);
 
 def _constant_lines(model) -> list[str]:
     lines = []
-    for v in constants(model):
-        lines.append(f"static const double {v.c_name} = {_c_double(v.start)};   /* [{v.unit}] "
-                     f"{_c_string(v.description)} */")
+    for v in constants(model):       # an effect's reference is in its hooks' comment below
+        text = v.description.split("; effect ")[0]
+        lines.append(f"static const double {v.c_name} = {_c_double(v.start)};   /* [{v.unit}] {_c_string(text)} */")
     return lines
 
 

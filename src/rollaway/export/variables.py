@@ -58,9 +58,10 @@ def _source(model, name: str, value: float) -> str:
     """Where a brake parameter's value came from: the calibration's words, the model file, or the paper set."""
     spec = SPEC_BY_NAME[name]
     calibration = getattr(model, "calibration", {}) or {}
-    said = calibration.get(name) or calibration.get("shoe_arm_ratio" if name == "shoe_arm_friction_m" else "")
-    if said:
-        return f"calibration: {said}"
+    if calibration.get(name):
+        return f"calibration: {calibration[name]}"
+    if name == "shoe_arm_friction_m" and calibration.get("shoe_arm_ratio"):
+        return f"calibration of the arm ratio l_fr/l_f (shoe_arm_ratio): {calibration['shoe_arm_ratio']}"
     if value != spec.value:
         return f"the model file (paper set: {spec.value:g} {spec.unit}, {spec.source})"
     return spec.source
