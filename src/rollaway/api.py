@@ -313,7 +313,8 @@ def export_fmu(model, path, **options):
     path : str or path-like
         The ``.fmu`` file to write.
     **options
-        ``stop_time_s``: stop time of the FMU's default experiment [s] (3600).
+        ``stop_time_s``: stop time of the FMU's default experiment [s] (3600); ``fmi_version``:
+        ``"2.0"`` (default, imported by every tool) or ``"3.0"``.
 
     Returns
     -------

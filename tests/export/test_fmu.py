@@ -153,3 +153,41 @@ def test_radiation_from_below_the_ambient_is_refused(tmp_path):
                           logger=lambda *a: logged.append(a))
     assert any(b"below ambient_temp_C" in (m if isinstance(m, bytes) else str(m).encode()) for a in logged for m in a)
     assert simulate(path, initial_drum_temp_C=27.0)["drum_temp_C"][-1] == 27.0      # at the ambient: stays
+
+
+@pytest.mark.parametrize("version, folder", [("2.0", "linux64"), ("3.0", "x86_64-linux")])
+def test_both_fmi_versions_validate_and_agree(run_cli, tmp_path, version, folder):
+    model = DrumModel("paper", effects=["radiation_cooling", "shoe_thermal_lag", "lining_creep"],
+                      values={"radiation_cooling.emissivity": 0.6, "shoe_thermal_lag.lag_time_s": 900.0,
+                              "lining_creep.relaxed_fraction": 0.15})
+    from rollaway.model.model_file import save_model
+    params = save_model(model, tmp_path / "m.toml")
+    fmu = tmp_path / f"m{version}.fmu"
+    code, _, err = run_cli("export-fmu", "--params", params, "--fmi-version", version, fmu)
+    assert code == 0, err
+    assert validate_fmu(str(fmu)) == []
+    assert f"binaries/{folder}/rollaway_drum.so" in zipfile.ZipFile(fmu).namelist()
+    for uphill in (False, True):
+        assert_same(simulate(fmu, hand_force_N=250.0, uphill=uphill, initial_drum_temp_C=280.0),
+                    DrumModel(params).evaluate(TIMES_S, 250.0, "uphill" if uphill else "downhill", initial_temp_C=280.0))
+
+
+@pytest.mark.parametrize("version", ["2.0", "3.0"])
+def test_the_binary_exports_only_the_fmi_functions(tmp_path, version):
+    """Internal names stay hidden, so two exported drums in one process cannot call each other's code."""
+    from rollaway.export import export_fmu
+    fmu = export_fmu("paper", tmp_path / "p.fmu", fmi_version=version)
+    so = tmp_path / "rollaway_drum.so"
+    so.write_bytes(next(zipfile.ZipFile(fmu).read(n) for n in zipfile.ZipFile(fmu).namelist() if n.endswith(".so")))
+    symbols = subprocess.run(["nm", "-D", "--defined-only", str(so)], capture_output=True, text=True).stdout
+    functions = [ln.split()[-1] for ln in symbols.splitlines() if " T " in ln]
+    import re
+
+    from rollaway.export.fmu import fmi_headers_dir
+    header = (fmi_headers_dir() / f"fmi{version[0]}Functions.h").read_text()
+    declared = set(re.findall(r"FMI[23]_Export\s+\w+TYPE\s+(fmi[23]\w+);", header))
+    model_exchange = {"fmi2EnterEventMode", "fmi2NewDiscreteStates", "fmi2EnterContinuousTimeMode",
+                      "fmi2CompletedIntegratorStep", "fmi2SetTime", "fmi2SetContinuousStates", "fmi2GetDerivatives",
+                      "fmi2GetEventIndicators", "fmi2GetContinuousStates", "fmi2GetNominalsOfContinuousStates"}
+    # FMI 2.0: the common and co-simulation functions; FMI 3.0: every function of the header
+    assert set(functions) == declared - (model_exchange if version == "2.0" else set())

@@ -31,6 +31,7 @@ def test_without_gcc_a_one_line_error(run_cli, tmp_path, monkeypatch):
 @pytest.mark.parametrize("args, words", [
     (["x.zip"], [".fmu"]),
     (["--params", "paper", "--stop-time-s", "0", "x.fmu"], ["--stop-time-s"]),
+    (["--fmi-version", "1.0", "x.fmu"], ["FMI version", "2.0", "3.0"]),
 ])
 def test_bad_arguments(run_cli, tmp_path, args, words):
     err = one_line_error(run_cli, "export-fmu", *[str(tmp_path / a) if a.startswith("x.") else a for a in args])

@@ -178,7 +178,8 @@ def _evaluate(model) -> str:
 def _accessors(model) -> str:
     params = parameters(model)
     reals = [v for v in params if v.kind == "Real"]
-    get = [f"    case {v.vr}: *value = s->{v.name}; return 0;" for v in reals]
+    get = ["    case 0: *value = s->time_s; return 0;                /* FMI 3.0's independent variable */"]
+    get += [f"    case {v.vr}: *value = s->{v.name}; return 0;" for v in reals]
     get += [f"    case {v.vr}: *value = s->{v.name}; return 0;" for v in OUTPUTS]
     get += [f"    case {v.vr}: *value = {v.c_name}; return 0;" for v in constants(model)]
     setr = [f"    case {v.vr}: s->{v.name} = value; return 0;" for v in reals]
@@ -254,10 +255,11 @@ def model_source(model, title: str) -> str:
     ])
 
 
-def sources(model, guid: str, title: str) -> dict[str, str]:
-    """File name → text of the FMU's generated and fixed C sources (FMI headers not included)."""
+def sources(model, guid: str, title: str, wrapper: str = "fmi2_cosim.c") -> dict[str, str]:
+    """File name → text of the FMU's generated and fixed C sources (FMI headers not included); *wrapper*
+    is the FMI interface (``fmi2_cosim.c`` or ``fmi3_cosim.c``)."""
     return {f"{MODEL_IDENTIFIER}.h": header(model, guid), f"{MODEL_IDENTIFIER}.c": model_source(model, title),
-            "fmi2_cosim.c": c_text("fmi2_cosim.c")}
+            wrapper: c_text(wrapper)}
 
 
 __all__ = ["CHAIN_PARAMETERS", "MODEL_IDENTIFIER", "Variable", "c_text", "effect_hooks_in_c", "has_c_effect",

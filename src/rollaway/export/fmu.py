@@ -1,8 +1,8 @@
-"""Export a drum model as an FMI 2.0 co-simulation FMU that runs without rollaway.
+"""Export a drum model as an FMI 2.0 (or 3.0) co-simulation FMU that runs without rollaway.
 
 The FMU (a zip) holds ``modelDescription.xml``, ``sources/`` (the generated chain, the FMI
-wrapper and the FMI 2.0 headers, so any tool can rebuild it) and ``binaries/linux64/rollaway_drum.so``,
-compiled at export by the system ``gcc``.  The C code is the Python chain written out
+wrapper and the FMI headers, so any tool can rebuild it) and ``binaries/linux64/rollaway_drum.so``
+(FMI 3.0: ``binaries/x86_64-linux/``), compiled at export by the system ``gcc``.  The C code is the Python chain written out
 (:mod:`rollaway.export.c_source`); the tests in ``tests/export/`` run the FMU with FMPy and hold
 it to :meth:`rollaway.model.drum_model.DrumModel.evaluate`.
 
@@ -25,22 +25,25 @@ from pathlib import Path
 from rollaway.errors import UserError
 from rollaway.export.c_source import MODEL_IDENTIFIER, effect_hooks_in_c, has_c_effect, sources
 from rollaway.export.model_description import model_description
+from rollaway.export.model_description_fmi3 import build_description, model_description_fmi3
 
 FMI2_HEADERS = ("fmi2Functions.h", "fmi2FunctionTypes.h", "fmi2TypesPlatform.h")
+FMI3_HEADERS = ("fmi3Functions.h", "fmi3FunctionTypes.h", "fmi3PlatformTypes.h")
 # double precision as Python computes it: no fused multiply-add, no fast-math reordering
-CFLAGS = ("-shared", "-fPIC", "-O2", "-std=c99", "-ffp-contract=off", "-fno-fast-math", "-Wall")
+CFLAGS = ("-shared", "-fPIC", "-O2", "-std=c99", "-ffp-contract=off", "-fno-fast-math", "-Wall",
+          "-fvisibility=hidden")       # only the FMI functions are exported: two FMUs in one process do not clash
 
 
-def fmi2_headers_dir() -> Path:
-    """The FMI 2.0 headers that ship with FMPy (UserError if FMPy is not installed)."""
+def fmi_headers_dir(headers=FMI2_HEADERS) -> Path:
+    """The folder of the FMI headers that ship with FMPy (UserError if FMPy is not installed)."""
     try:
         import fmpy
     except ImportError:
-        raise UserError("export-fmu needs the FMI 2.0 headers that ship with FMPy; install them with "
+        raise UserError("export-fmu needs the FMI headers that ship with FMPy; install them with "
                         "pip install 'rollaway[fmu]' (or pip install fmpy)") from None
     folder = Path(fmpy.__file__).parent / "c-code"
-    if not all((folder / h).is_file() for h in FMI2_HEADERS):
-        raise UserError(f"FMPy at {folder.parent} has no FMI 2.0 headers in c-code/; reinstall it "
+    if not all((folder / h).is_file() for h in headers):
+        raise UserError(f"FMPy at {folder.parent} lacks {', '.join(headers)} in c-code/; reinstall it "
                         f"(pip install --force-reinstall 'fmpy>=0.3.20')")
     return folder
 
@@ -68,9 +71,9 @@ def exportable(model) -> None:
                         f"eqs. 18-21): the model has no finite torque; lower mu_drum in the model file")
 
 
-def _check_platform() -> str:
+def _check_platform() -> None:
     if sys.platform.startswith("linux") and platform.machine() in ("x86_64", "AMD64"):
-        return "linux64"
+        return
     raise UserError(f"export-fmu builds a linux64 binary and runs on Linux x86-64 only (this is {sys.platform} "
                     f"{platform.machine()}); the FMU's sources/ can be compiled for other platforms by the importing "
                     f"tool")
@@ -89,48 +92,60 @@ def _guid(texts: list[str]) -> str:
     return "{" + str(uuid.UUID(digest[:32])) + "}"
 
 
-def export_fmu(model, path: str | Path, *, stop_time_s: float = 3600.0) -> Path:
+FMI = {   # per FMI version: the interface's C file, its headers, the binary's folder (FMI 2.0 sec. 2.4, 3.0 sec. 2.5)
+    "2.0": ("fmi2_cosim.c", FMI2_HEADERS, "linux64"),
+    "3.0": ("fmi3_cosim.c", FMI3_HEADERS, "x86_64-linux"),
+}
+
+
+def export_fmu(model, path: str | Path, *, stop_time_s: float = 3600.0, fmi_version: str = "2.0") -> Path:
     """Write *model* (a :class:`~rollaway.model.drum_model.DrumModel`, a set name or a model file) as an
-    FMI 2.0 co-simulation FMU at *path* (``.fmu``); returns the path.
+    FMI co-simulation FMU at *path* (``.fmu``); returns the path.
 
     Parameters of the FMU: ``hand_force_N``, ``initial_drum_temp_C``, ``ambient_temp_C``,
     ``facing_uphill``; outputs: ``torque_Nm`` (one rear drum), ``drum_temp_C``, ``clamp_force_N``,
     ``lining_temp_C``; the FMU's time is the time since the lever was applied [s].
-    *stop_time_s* is the DefaultExperiment's stop time.
+    *stop_time_s* is the DefaultExperiment's stop time; *fmi_version* ``"2.0"`` or ``"3.0"``.
     """
+    from rollaway.errors import check_choice
     from rollaway.model.drum_model import as_model
+    fmi_version = check_choice(str(fmi_version), FMI, "FMI version")
     model = as_model(model)
     out = Path(path)
     if out.suffix.lower() != ".fmu":
         raise UserError(f"output '{out}' must end in .fmu (an FMU is a zip file named MODEL.fmu), e.g. drum.fmu")
     exportable(model)
-    binary_dir = _check_platform()
+    _check_platform()
     gcc = _gcc()
-    headers = fmi2_headers_dir()
+    wrapper, header_files, binary_dir = FMI[fmi_version]
+    headers = fmi_headers_dir(header_files)
     title = f"drum model '{model.name}'"
-    files = sources(model, "{GUID}", title)
-    guid = _guid([*files.values(), model_description(model, "{GUID}", list(files), stop_time_s).split(
-        "generationDateAndTime")[0]])
-    files = sources(model, guid, title)
-    xml = model_description(model, guid, [f for f in files if f.endswith(".c")], stop_time_s)
+    files = sources(model, "{GUID}", title, wrapper)
+    c_files = [f for f in files if f.endswith(".c")]
+    guid = _guid([fmi_version, *files.values(), _description(model, "{GUID}", c_files, stop_time_s, fmi_version)
+                  .split("generationDateAndTime")[0]])
+    files = sources(model, guid, title, wrapper)
     with tempfile.TemporaryDirectory(prefix="rollaway-fmu-") as tmp:
         root = Path(tmp)
         src = root / "sources"
         src.mkdir()
         for name, text in files.items():
             (src / name).write_text(text, encoding="utf-8")
-        for h in FMI2_HEADERS:
+        for h in header_files:
             shutil.copyfile(headers / h, src / h)
+        if fmi_version == "3.0":
+            (src / "buildDescription.xml").write_text(build_description(c_files), encoding="utf-8")
         lib = root / "binaries" / binary_dir / f"{MODEL_IDENTIFIER}.so"
         lib.parent.mkdir(parents=True)
-        cmd = [gcc, *CFLAGS, f"-I{src}", "-o", str(lib), *(str(src / f) for f in files if f.endswith(".c")), "-lm"]
+        cmd = [gcc, *CFLAGS, f"-I{src}", "-o", str(lib), *(str(src / f) for f in c_files), "-lm"]
         proc = subprocess.run(cmd, capture_output=True, text=True)
         if proc.returncode != 0 or proc.stderr.strip():
             first = next((ln for ln in proc.stderr.splitlines() if "error" in ln or "warning" in ln),
                          proc.stderr.strip()[:200])
             raise UserError(f"gcc could not compile the generated C sources cleanly: {first.strip()}; this is a bug "
                             f"of rollaway's export, please report it with the model file")
-        (root / "modelDescription.xml").write_text(xml, encoding="utf-8")
+        (root / "modelDescription.xml").write_text(_description(model, guid, c_files, stop_time_s, fmi_version),
+                                                   encoding="utf-8")
         if not out.parent.exists():
             from rollaway.errors import ensure_parent_dir
             ensure_parent_dir(out, "OUT.fmu")
@@ -141,4 +156,10 @@ def export_fmu(model, path: str | Path, *, stop_time_s: float = 3600.0) -> Path:
     return out
 
 
-__all__ = ["CFLAGS", "export_fmu", "exportable", "fmi2_headers_dir"]
+def _description(model, guid: str, c_files: list[str], stop_time_s: float, fmi_version: str) -> str:
+    if fmi_version == "3.0":
+        return model_description_fmi3(model, guid, stop_time_s)
+    return model_description(model, guid, c_files, stop_time_s)
+
+
+__all__ = ["CFLAGS", "FMI", "export_fmu", "exportable", "fmi_headers_dir"]

@@ -47,7 +47,7 @@ def description(model) -> str:
     return text + f"; exported by {prov['exported_by']}"
 
 
-def _unit_definitions(variables: list[Variable]) -> ET.Element:
+def unit_definitions(variables: list[Variable]) -> ET.Element:
     el = ET.Element("UnitDefinitions")
     by_name = {name: base for name, base in UNITS.values()}
     for name in sorted({v.unit for v in variables if v.unit}):
@@ -82,7 +82,7 @@ def model_description(model, guid: str, source_files: list[str], stop_time_s: fl
     files = ET.SubElement(cs, "SourceFiles")
     for name in source_files:
         ET.SubElement(files, "File", name=name)
-    root.append(_unit_definitions(variables))
+    root.append(unit_definitions(variables))
     cats = ET.SubElement(root, "LogCategories")
     ET.SubElement(cats, "Category", name="logStatusError", description="errors: bad parameters, self-locking")
     ET.SubElement(root, "DefaultExperiment", startTime="0.0", stopTime=_number(stop_time_s), stepSize="10.0")
@@ -117,4 +117,4 @@ def model_description(model, guid: str, source_files: list[str], stop_time_s: fl
     return '<?xml version="1.0" encoding="UTF-8"?>\n' + ET.tostring(root, encoding="unicode") + "\n"
 
 
-__all__ = ["description", "model_description", "provenance"]
+__all__ = ["description", "model_description", "provenance", "unit_definitions"]
