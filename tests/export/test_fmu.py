@@ -177,6 +177,7 @@ def test_the_binary_exports_only_the_fmi_functions(tmp_path, version):
     """Internal names stay hidden, so two exported drums in one process cannot call each other's code."""
     from rollaway.export import export_fmu
     fmu = export_fmu("paper", tmp_path / "p.fmu", fmi_version=version)
+    assert validate_fmu(str(fmu)) == []                     # the paper's model too (no unit 's' of its own)
     so = tmp_path / "rollaway_drum.so"
     so.write_bytes(next(zipfile.ZipFile(fmu).read(n) for n in zipfile.ZipFile(fmu).namelist() if n.endswith(".so")))
     symbols = subprocess.run(["nm", "-D", "--defined-only", str(so)], capture_output=True, text=True).stdout

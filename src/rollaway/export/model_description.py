@@ -47,10 +47,11 @@ def description(model) -> str:
     return text + f"; exported by {prov['exported_by']}"
 
 
-def unit_definitions(variables: list[Variable]) -> ET.Element:
+def unit_definitions(variables: list[Variable], extra: tuple[str, ...] = ()) -> ET.Element:
+    """``<UnitDefinitions>`` of every unit the variables use, and the *extra* ones (FMI 3.0's time: ``s``)."""
     el = ET.Element("UnitDefinitions")
     by_name = {name: base for name, base in UNITS.values()}
-    for name in sorted({v.unit for v in variables if v.unit}):
+    for name in sorted({v.unit for v in variables if v.unit} | set(extra)):
         unit = ET.SubElement(el, "Unit", name=name)
         base = dict(by_name.get(name, {}))
         offset = base.pop("offset", None)

@@ -32,7 +32,7 @@ def model_description_fmi3(model, token: str, stop_time_s: float = 3600.0) -> st
         "modelIdentifier": MODEL_IDENTIFIER, "canHandleVariableCommunicationStepSize": "true",
         "canGetAndSetFMUState": "false", "canSerializeFMUState": "false", "providesDirectionalDerivatives": "false",
         "hasEventMode": "false", "providesIntermediateUpdate": "false"})
-    root.append(unit_definitions(variables))
+    root.append(unit_definitions(variables, extra=("s",)))
     cats = ET.SubElement(root, "LogCategories")
     ET.SubElement(cats, "Category", name="logStatusError", description="errors: bad parameters, self-locking")
     ET.SubElement(root, "DefaultExperiment", startTime="0.0", stopTime=repr(float(stop_time_s)), stepSize="10.0")
