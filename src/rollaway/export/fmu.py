@@ -142,6 +142,9 @@ def export_fmu(model, path: str | Path, *, stop_time_s: float = 3600.0, fmi_vers
         if proc.returncode != 0 or proc.stderr.strip():
             first = next((ln for ln in proc.stderr.splitlines() if "error" in ln or "warning" in ln),
                          proc.stderr.strip()[:200])
+            if "math.h" in proc.stderr or "stdio.h" in proc.stderr:
+                raise UserError(f"gcc finds no C library headers ({first.strip()}); install them "
+                                f"(Debian/Ubuntu: apt-get install libc6-dev)")
             raise UserError(f"gcc could not compile the generated C sources cleanly: {first.strip()}; this is a bug "
                             f"of rollaway's export, please report it with the model file")
         (root / "modelDescription.xml").write_text(_description(model, guid, c_files, stop_time_s, fmi_version),
