@@ -29,6 +29,9 @@ rollaway diagnose examples/identify/bench-own-drum-downhill.csv --save-model out
 head -1 out/own-drum.txt; sed -n '/^Your drum/,/^$/p' out/own-drum.txt | cut -c1-150
 rollaway hold --grade-pct 20 --hand-force-N 300 --occupants 1 --duration-s 3600 --direction uphill \
   --params out/own-drum.toml --uncertainty 1000 | tail -3 || true
+echo; echo "== 8. the calibrated drum for Simulink, Dymola, OpenModelica: an FMI 2.0 FMU that runs without rollaway"
+rollaway export-fmu --params out/calibrated.toml out/calibrated.fmu
+python -m fmpy validate out/calibrated.fmu
 echo
 echo "== done. What was written, and what to open:"
 echo "  renders/quickstart/hot-parking-rollaway.mp4   the car rolling away when the drum has cooled (open it)"
@@ -39,4 +42,5 @@ echo "  renders/paper/fig09..fig14*.png                the paper's Figures 9-14 
 echo "  out/diagnose.html, out/calibrated.toml         the missing effect found in bench data; the calibrated model"
 echo "  out/design-chart-calibrated.png                least hand force: paper model vs calibrated model (open it)"
 echo "  out/own-drum.txt, out/own-drum.toml            your own brake: the identifiability report; its calibrated model"
+echo "  out/calibrated.fmu                             the calibrated drum as an FMU (docs/how-to/fmu-export.md)"
 echo "  docs/model.md                                  the model, equation by equation"

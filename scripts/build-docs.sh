@@ -11,6 +11,7 @@ export NO_MKDOCS_2_WARNING=1                # (MkDocs 2 notice of the Material t
 # pictures the pages show that the repository keeps beside the README
 mkdir -p docs/assets
 cp renders/design-chart.png renders/hot-parking-rollaway.gif docs/assets/
+cp renders/fmu-vs-rollaway.png docs/assets/           # scripts/fmu-figure.py draws it (FMU export how-to)
 start=$(date +%s)
 site="${SITE_DIR:-site}"                    # where to build (default: site/)
 python -m mkdocs build --strict --clean --site-dir "$site"

@@ -1,10 +1,10 @@
 #!/usr/bin/env bash
 # Install rollaway and everything it needs on a fresh Debian machine (root, no GPU).
-# System libraries: Mesa EGL/OSMesa for off-screen MuJoCo rendering.
+# System libraries: Mesa EGL/OSMesa for off-screen MuJoCo rendering; gcc (+ libc headers) builds exported FMUs.
 set -euo pipefail
 cd "$(dirname "$0")/.."
 need=()
-for pkg in libegl1 libegl-mesa0 libgl1-mesa-dri libosmesa6; do
+for pkg in libegl1 libegl-mesa0 libgl1-mesa-dri libosmesa6 gcc libc6-dev; do
   dpkg -s "$pkg" >/dev/null 2>&1 || need+=("$pkg")
 done
 if [ ${#need[@]} -gt 0 ]; then

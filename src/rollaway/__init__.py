@@ -29,11 +29,13 @@ _LAZY = {
     # the paper's chain as plain functions, and parameter sets
     "BrakeSeries": "rollaway.model.brake", "drum_brake": "rollaway.model.brake", "BrakeParameters": "rollaway.model.parameters",
     "load_parameters": "rollaway.model.parameters", "paper": "rollaway.model.parameters",
+    "export_fmu": "rollaway.api",     # the drum model as an FMI 2.0 co-simulation FMU
 }
 _CALLABLE_PACKAGES = ("hold", "sweep")     # packages that are also the API functions of the same name
 
 __all__ = ["BrakeParameters", "BrakeSeries", "DrumModel", "HoldVerdict", "check", "diagnose", "drum_brake", "fit",
            "hold", "load_measurements", "load_model", "load_parameters", "paper", "simulate", "sweep", "__version__"]
+__all__ += ["export_fmu"]
 
 
 def __getattr__(name):

@@ -296,3 +296,35 @@ def fit(data, effects, **options):
     """
     from rollaway.identify.ladder import fit as run
     return run(_data(data), list(effects), **options)
+
+
+def export_fmu(model, path, **options):
+    """Export a drum model as an FMI 2.0 co-simulation FMU that runs without rollaway (Simulink, Dymola,
+    OpenModelica, FMPy, ...).
+
+    The chain and every catalogue effect of the model are C code in the FMU, with the model's values
+    baked in as read-only constants; a linux64 binary is compiled with the system ``gcc``.
+
+    Parameters
+    ----------
+    model : DrumModel or str or path-like
+        The drum model, a parameter-set name, or a parameter/model file (``.toml``, e.g. written by
+        ``diagnose(...).save_model``).  A model with a plugin effect cannot be exported.
+    path : str or path-like
+        The ``.fmu`` file to write.
+    **options
+        ``stop_time_s``: stop time of the FMU's default experiment [s] (3600); ``fmi_version``:
+        ``"2.0"`` (default, imported by every tool) or ``"3.0"``.
+
+    Returns
+    -------
+    pathlib.Path
+        The FMU written: parameters ``hand_force_N``, ``initial_drum_temp_C``, ``ambient_temp_C``,
+        ``facing_uphill``; outputs ``torque_Nm`` (one rear drum), ``drum_temp_C``, ``clamp_force_N``,
+        ``lining_temp_C``; time is the time since the lever was applied [s].
+    """
+    from rollaway.export import export_fmu as run
+    return run(model, path, **options)
+
+
+__all__ += ["export_fmu"]

@@ -26,13 +26,14 @@ COMMANDS = {
     "fit": "Error ladder: refit with effects added and watch the error fall.",
     "synth": "Write synthetic bench data from the model plus hidden effects.",
     "chart": "Design chart: least hand force against grade for drum models.",
+    "export-fmu": "Export the drum model as an FMI 2.0 co-simulation FMU.",
 }
 
 
 def load_command(name: str):
     """The click command of *name*, built from its module ``rollaway.cli.<name>``."""
     sub = typer.Typer(add_completion=False, pretty_exceptions_enable=False, rich_markup_mode=None)
-    importlib.import_module(f"rollaway.cli.{name}").register(sub)
+    importlib.import_module(f"rollaway.cli.{name.replace('-', '_')}").register(sub)   # export-fmu: export_fmu
     return typer.main.get_command(sub)
 
 

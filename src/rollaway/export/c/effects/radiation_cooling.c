@@ -1,0 +1,77 @@
+/* radiation_cooling: the drum loses heat by convection and radiation,
+ *   C dT/dt = -h A (T - T_a) - eps sigma A (T_K^4 - T_aK^4)      (Incropera & DeWitt 2007, secs. 1.2.3, 12.3)
+ * Separable: with s = ln(T - T_a), t(s) = G(s_0) - G(s), G(s) = integral of (T - T_a) C / q(T) ds.
+ * G is tabulated once (radiation_cooling_setup) on the same log grid as the Python code
+ * (1500 points, trapezoid rule) and inverted by linear interpolation, so both give the same numbers.
+ * Python: rollaway/effects/radiation_cooling.py */
+/* @members */
+#define RADIATION_GRID 1500               /* points of the table, as n_grid in Python */
+    double radiation_s[RADIATION_GRID];   /* log grid s = ln(T - T_a) */
+    double radiation_g[RADIATION_GRID];   /* G(s) [s] */
+    double radiation_f0;                  /* the integrand at the grid's lower end (pure convection) */
+/* @end */
+
+static const double STEFAN_BOLTZMANN_W_m2K4 = 5.670374419e-8;
+static const double KELVIN = 273.15;
+
+/* numpy.interp: linear interpolation in an increasing table, clamped at its ends */
+static double radiation_interp(double x, const double *xp, const double *fp, int n)
+{
+    int lo = 0, hi = n - 1;
+    double slope;
+    if (x < xp[0]) return fp[0];
+    if (x >= xp[n - 1]) return fp[n - 1];
+    while (hi - lo > 1) {                 /* xp[lo] <= x < xp[hi] */
+        int mid = (lo + hi) / 2;
+        if (xp[mid] <= x) lo = mid; else hi = mid;
+    }
+    slope = (fp[lo + 1] - fp[lo]) / (xp[lo + 1] - xp[lo]);
+    return slope * (x - xp[lo]) + fp[lo];
+}
+
+/* The table runs from T_0 down to T_a: a drum warming up from below the ambient is not covered
+ * (rollaway's Python gives T_a - 0.1 mK there from t = 0 on); the FMU refuses it. */
+static int radiation_cooling_check(const DrumState *s, char *why, int size)
+{
+    if (s->initial_drum_temp_C >= s->ambient_temp_C) return 0;
+    snprintf(why, (size_t)size, "radiation_cooling: initial_drum_temp_C = %g is below ambient_temp_C = %g; the "
+             "radiation law covers a drum cooling down only", s->initial_drum_temp_C, s->ambient_temp_C);
+    return 1;
+}
+
+static void radiation_cooling_setup(DrumState *s, double emissivity)
+{
+    double ta = s->ambient_C, heat_capacity_J_K = drum_density_kg_m3 * drum_specific_heat_J_kgK * drum_volume_m3;
+    double top = fmax(s->initial_temp_C - ta, 1e-3) * 1.01;
+    double start = log(1e-4), step = (log(top) - start) / (RADIATION_GRID - 1), f_prev = 0.0;
+    int i;
+    for (i = 0; i < RADIATION_GRID; i++) {        /* numpy.linspace, then the trapezoid rule */
+        double d, q, f;
+        s->radiation_s[i] = i == RADIATION_GRID - 1 ? log(top) : i * step + start;
+        d = exp(s->radiation_s[i]);
+        q = heat_transfer_W_m2K * cooled_area_m2 * d + emissivity * STEFAN_BOLTZMANN_W_m2K4 * cooled_area_m2
+            * (pow(ta + d + KELVIN, 4.0) - pow(ta + KELVIN, 4.0));
+        f = heat_capacity_J_K * d / q;
+        if (i == 0) {
+            s->radiation_g[0] = 0.0;
+            s->radiation_f0 = f;
+        } else {
+            s->radiation_g[i] = s->radiation_g[i - 1]
+                + 0.5 * (f + f_prev) * (s->radiation_s[i] - s->radiation_s[i - 1]);
+        }
+        f_prev = f;
+    }
+}
+
+static double radiation_cooling_drum_temperature(const DrumState *s, double temp_C, double emissivity)
+{
+    double ta = s->ambient_C, t0 = s->initial_temp_C, d0 = fmax(t0 - ta, 1e-4), s_out, sign;
+    double g_target = radiation_interp(log(d0), s->radiation_s, s->radiation_g, RADIATION_GRID) - s->time_s;
+    (void)temp_C; (void)emissivity;
+    if (g_target >= 0.0)
+        s_out = radiation_interp(g_target, s->radiation_g, s->radiation_s, RADIATION_GRID);
+    else           /* below the grid the integrand is the pure-convection limit: extend exponentially */
+        s_out = s->radiation_s[0] + g_target / s->radiation_f0;
+    sign = t0 > ta ? 1.0 : (t0 < ta ? -1.0 : 0.0);
+    return ta + sign * exp(s_out);
+}
