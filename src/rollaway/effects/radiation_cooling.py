@@ -16,36 +16,38 @@ def radiative_convective_temperature_C(time_s, initial_temp_C, ambient_C, heat_t
     ``C dT/dt = −h A (T − T_a) − ε σ A (T_K⁴ − T_aK⁴)`` is separable: with s = ln(T − T_a),
     ``t(s) = G(s_0) − G(s)``, ``G(s) = ∫ (T − T_a)·C / q(T) ds``.  G is tabulated once per
     ambient on a log grid (smooth integrand, no stiffness) and inverted by interpolation,
-    so all samples of all tests are done at once.
+    so all samples of all tests are done at once.  A drum that starts below the ambient warms
+    towards it by the same law (s = ln(T_a − T), its own table).
     """
     t, t0, amb, h, eps = np.broadcast_arrays(*(np.asarray(x, float) for x in (
         time_s, initial_temp_C, ambient_C, heat_transfer_W_m2K, emissivity)))
     shape = t.shape
     t, t0 = t.ravel(), t0.ravel()
     out = np.empty(t.size)
-    keys = np.stack([amb.ravel(), h.ravel(), eps.ravel()], axis=1)
+    side = np.where(t0 >= amb.ravel(), 1.0, -1.0)          # +1 cooling towards the ambient, −1 warming
+    keys = np.stack([amb.ravel(), h.ravel(), eps.ravel(), side], axis=1)
     if keys.size and np.all(keys == keys[0]):       # one (ambient, h, ε) for all samples: no sort needed
         uniq, order, bounds = keys[:1], np.arange(t.size), np.array([0, t.size])
     else:
         uniq, inverse = np.unique(keys, axis=0, return_inverse=True)
         order = np.argsort(inverse.ravel(), kind="stable")
         bounds = np.concatenate([[0], np.cumsum(np.bincount(inverse.ravel(), minlength=len(uniq)))])
-    for j, (ta, hj, ej) in enumerate(uniq):      # one table of G per (ambient, h, ε)
+    for j, (ta, hj, ej, sg) in enumerate(uniq):      # one table of G per (ambient, h, ε, side)
         sel = order[bounds[j]:bounds[j + 1]]
-        top = max(float(np.max(t0[sel] - ta)), 1e-3) * 1.01
+        top = max(float(np.max(sg * (t0[sel] - ta))), 1e-3) * 1.01
         s = np.linspace(np.log(1e-4), np.log(top), n_grid)
         d = np.exp(s)
-        q = hj * cooled_area_m2 * d + ej * STEFAN_BOLTZMANN_W_m2K4 * cooled_area_m2 * (
-            (ta + d + KELVIN) ** 4 - (ta + KELVIN) ** 4)
+        q = hj * cooled_area_m2 * d + ej * STEFAN_BOLTZMANN_W_m2K4 * cooled_area_m2 * sg * (
+            (ta + sg * d + KELVIN) ** 4 - (ta + KELVIN) ** 4)
         f = heat_capacity_J_K * d / q
         g = np.concatenate([[0.0], np.cumsum(0.5 * (f[1:] + f[:-1]) * np.diff(s))])   # increasing in s
-        d0 = np.clip(t0[sel] - ta, 1e-4, None)
+        d0 = np.clip(sg * (t0[sel] - ta), 1e-4, None)
         g_target = np.interp(np.log(d0), s, g) - t[sel]
         # below the grid the integrand is the pure-convection limit: extend exponentially
         f0 = f[0]
         inside = g_target >= 0.0
         s_out = np.where(inside, np.interp(np.maximum(g_target, 0.0), g, s), s[0] + g_target / f0)
-        out[sel] = ta + np.sign(t0[sel] - ta) * np.exp(s_out)
+        out[sel] = ta + sg * np.exp(s_out)
     return out.reshape(shape)
 
 
