@@ -30,10 +30,11 @@ _LAZY = {
     "BrakeSeries": "rollaway.model.brake", "drum_brake": "rollaway.model.brake", "BrakeParameters": "rollaway.model.parameters",
     "load_parameters": "rollaway.model.parameters", "paper": "rollaway.model.parameters",
 }
-_CALLABLE_PACKAGES = ("hold", "sweep")     # packages that are also the API functions of the same name
+_CALLABLE_PACKAGES = ("hold", "sweep", "risk")     # packages that are also the API functions of the same name
 
 __all__ = ["BrakeParameters", "BrakeSeries", "DrumModel", "HoldVerdict", "check", "diagnose", "drum_brake", "fit",
-           "hold", "load_measurements", "load_model", "load_parameters", "paper", "simulate", "sweep", "__version__"]
+           "hold", "load_measurements", "load_model", "load_parameters", "paper", "simulate", "sweep", "__version__",
+           "risk"]
 
 
 def __getattr__(name):

@@ -26,6 +26,7 @@ COMMANDS = {
     "fit": "Error ladder: refit with effects added and watch the error fall.",
     "synth": "Write synthetic bench data from the model plus hidden effects.",
     "chart": "Design chart: least hand force against grade for drum models.",
+    "risk": "Roll-away rate of a production fleet (ppm, 95 % interval), drivers and design.",
 }
 
 

@@ -90,8 +90,11 @@ class Population:
     def values_from_normal(self, u: np.ndarray) -> dict[str, np.ndarray]:
         """Values of every varied name for independent standard-normal scores *u* of shape (n, dim)."""
         u = np.atleast_2d(np.asarray(u, float))
-        z = u @ np.linalg.cholesky(self.correlation).T if self.dim > 1 else u
-        return {m.name: m.from_normal(z[:, i]) for i, m in enumerate(self.marginals)}
+        correlated = self.dim > 1 and np.any(self.correlation != np.eye(self.dim))
+        z = u @ np.linalg.cholesky(self.correlation).T if correlated else u
+        # far tails (importance sampling visits them) are kept inside the physical range; the file's
+        # distributions put at most OUTSIDE_TOLERANCE there (validated)
+        return {m.name: np.clip(m.from_normal(z[:, i]), *RANGES[m.name]) for i, m in enumerate(self.marginals)}
 
     def with_fixed(self, name: str, value: float) -> "Population":
         """This population with one fixed (not varied) value changed, validated like the file's."""
