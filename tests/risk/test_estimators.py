@@ -1,0 +1,114 @@
+"""Rates against truths computed without rollaway.risk: root finding and quadrature on the hold check.
+
+Several seeds each; the 95 % intervals must hold the truth at about their nominal rate."""
+import numpy as np
+import pytest
+from scipy import stats
+
+from rollaway.risk import load_population
+from rollaway.risk.estimators import estimate
+from tests.risk.truths import rate_mu_uniform, rate_two_normals
+
+
+def misses_allowed(n: int) -> int:
+    """Most misses of a 95 % interval in n independent tries before it is implausible (P < 0.2 %)."""
+    return int(stats.binom.isf(0.002, n, 0.05))
+
+
+def test_one_uniform_input_mc_intervals_cover_the_measure_below_the_threshold(write_population):
+    """μ_d uniform on [0.3, 0.6], 250 N: the rate is the share of [0.3, 0.6] below the root μ*."""
+    pop = load_population(write_population("[vary]\nmu_drum = { uniform = [0.3, 0.6] }\n").parent / "pop.toml")
+    pop = pop.with_fixed("hand_force_N", 250.0)
+    truth = rate_mu_uniform(0.3, 0.6, 250.0)
+    assert 0.05 < truth < 0.5
+    seeds = range(30)
+    misses = 0
+    for s in seeds:
+        e = estimate(pop, "mc", 4000, seed=s)
+        assert e.method == "mc" and e.samples == 4000
+        misses += not (e.total.ci95[0] <= truth <= e.total.ci95[1])
+        assert e.brake.probability == e.total.probability and e.tyres.probability == 0.0   # tyres hold here
+    assert misses <= misses_allowed(len(seeds)), misses
+
+
+@pytest.mark.parametrize("method", ["is", "form", "auto"])
+def test_one_ppm_case_within_30_percent_and_covered(write_population, method):
+    """μ_d ~ N(0.45, 0.037), hand force ~ N(400, 37): about 1.2 ppm by quadrature."""
+    path = write_population("[vary]\nmu_drum = { normal = [0.45, 0.037] }\nhand_force_N = { normal = [400, 37] }\n")
+    pop = load_population(path)
+    truth = rate_two_normals(0.45, 0.037, 400.0, 37.0)
+    assert 5e-7 < truth < 3e-6
+    seeds = range(8) if method == "is" else range(2)
+    misses = 0
+    for s in seeds:
+        e = estimate(pop, method, 1_000_000, seed=s)
+        assert e.method == ("form" if method == "form" else "is")
+        check = e.detail["check"] if method == "form" else e.total.as_dict()
+        assert abs(check["probability"] / truth - 1) < 0.3, (s, check, truth)
+        lo, hi = e.total.ci95
+        assert hi - lo < 0.6 * truth                           # a useful interval: about ±30 % or better
+        misses += not (lo <= truth <= hi)
+    assert misses <= misses_allowed(len(seeds))
+    if method == "form":                                     # FORM's own Φ(−β): first order, within a factor 2
+        assert 0.5 < e.total.probability / truth < 2
+
+
+def test_subset_simulation_holds_a_rare_truth(write_population):
+    path = write_population("[vary]\nmu_drum = { normal = [0.42, 0.03] }\nhand_force_N = { normal = [400, 40] }\n")
+    truth = rate_two_normals(0.42, 0.03, 400.0, 40.0)
+    e = estimate(load_population(path), "subset", 200_000, seed=3)
+    assert e.method == "subset" and e.total.ci95[0] <= truth <= e.total.ci95[1], (e.total, truth)
+    assert abs(e.total.probability / truth - 1) < 0.5
+
+
+def test_choice_input_is_stratified_and_matches_the_weighted_sum(write_population):
+    """occupants a choice: the rate is Σ w·P(fail | occupants), each term by quadrature-free closed form."""
+    path = write_population("[vary]\nmu_drum = { uniform = [0.3, 0.6] }\n"
+                            "occupants = { choice = [1, 5], weights = [0.9, 0.1] }\n")
+    pop = load_population(path).with_fixed("hand_force_N", 230.0)
+    truths = []
+    for occ in (1, 5):
+        from tests.risk import truths as t
+        case = dict(t.CASE, occupants=occ)
+        mu = t.mu_threshold(230.0, case=case)
+        truths.append(np.clip((mu - 0.3) / 0.3, 0, 1))
+    truth = 0.9 * truths[0] + 0.1 * truths[1]
+    e = estimate(pop, "is", 200_000, seed=1)
+    assert e.detail["strata"] == 2
+    assert e.total.ci95[0] <= truth <= e.total.ci95[1], (e.total, truth)
+
+
+def test_tyre_skids_are_a_failure_mode_of_their_own(write_population):
+    """A slippery road (μ_r uniform 0.3–1.0) on 30 %: the tyres skid where μ_r·N_r < m g sin θ, found by root."""
+    from scipy import optimize
+
+    from rollaway.hold import tyre_adhesion_margin
+    from rollaway.model.parameters import paper
+    head = ('grade_pct = 30\ndirection = "downhill"\noccupants = 1\nhand_force_N = 500\nduration_s = 300\n'
+            'initial_drum_temp_C = 200\n')
+    pop = load_population(write_population("[vary]\ntyre_road_mu = { uniform = [0.3, 1.0] }\n", head=head))
+    mu_star = optimize.brentq(lambda m: float(tyre_adhesion_margin(paper().replace(tyre_road_mu=m), 30, "downhill", 1))
+                              - 1, 0.01, 2.0)
+    truth = (mu_star - 0.3) / 0.7
+    e = estimate(pop, "mc", 20_000, seed=2)
+    assert e.tyres.ci95[0] <= truth <= e.tyres.ci95[1] and e.brake.probability < e.tyres.probability
+
+
+def test_both_directions_fail_more_often_than_either(write_population):
+    text = "[vary]\nmu_drum = { uniform = [0.3, 0.6] }\n"
+    up = load_population(write_population(text)).with_fixed("hand_force_N", 250.0)
+    both = load_population(write_population(text.replace("", ""), head=(
+        'grade_pct = 20\ndirection = "both"\noccupants = 5\nhand_force_N = 250\nduration_s = 300\n'
+        'initial_drum_temp_C = 200\n'), name="both.toml"))
+    down = both.with_fixed("grade_pct", 20.0)
+    import dataclasses
+    down = dataclasses.replace(down, directions=("downhill",))
+    r = {k: estimate(p, "mc", 20_000, seed=4).total.probability for k, p in (("up", up), ("down", down), ("both", both))}
+    assert r["both"] >= max(r["up"], r["down"]) and r["both"] > 0
+
+
+def test_same_seed_same_answer_and_chunks_add_up(write_population):
+    pop = load_population(write_population("[vary]\nmu_drum = { uniform = [0.3, 0.6] }\n")).with_fixed(
+        "hand_force_N", 250.0)
+    a, b = estimate(pop, "mc", 600_000, seed=9), estimate(pop, "mc", 600_000, seed=9)
+    assert a.total == b.total and a.samples == 600_000    # three chunks streamed
