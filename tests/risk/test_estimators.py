@@ -58,6 +58,7 @@ def test_subset_simulation_holds_a_rare_truth(write_population):
     truth = rate_two_normals(0.42, 0.03, 400.0, 40.0)
     e = estimate(load_population(path), "subset", 200_000, seed=3)
     assert e.method == "subset" and e.total.ci95[0] <= truth <= e.total.ci95[1], (e.total, truth)
+    assert np.isnan(e.brake.probability)          # the budget goes to the rate alone
     assert abs(e.total.probability / truth - 1) < 0.5
 
 

@@ -78,10 +78,11 @@ def design(population: Population, name: str, target: float, samples: int = 1_00
         raise UserError(f"--design {name}: '{name}' is varied; design a fixed input or a spec limit "
                         f"('{name}.lower' or '{name}.upper')")
     make, (lo, hi), _ = _setter(population, name)
-    tol = tolerance if tolerance is not None else 1e-4 * (hi - lo)
     n = int(min(samples, MAX_MC_CARS))
     rng = np.random.default_rng(seed)
-    if target * n >= MC_FAILURES:
+    crn = target * n >= MC_FAILURES
+    tol = tolerance if tolerance is not None else (1e-4 if crn else 1e-3) * (hi - lo)
+    if crn:
         u = rng.standard_normal((n, population.dim))
         draws = model_draws(population, n, rng)
         method = "mc (common random numbers)"
@@ -114,7 +115,7 @@ def design(population: Population, name: str, target: float, samples: int = 1_00
         value = good
     p, ci = rate(value)
     width = max(abs(value) * 0.25, (hi - lo) / 20)
-    grid = np.linspace(max(lo, value - width), min(hi, value + width), CURVE_POINTS)
+    grid = np.linspace(max(lo, value - width), min(hi, value + width), CURVE_POINTS if crn else CURVE_POINTS // 2)
     curve = [(float(v), float(rate(v)[0])) for v in grid]
     return Design(name, float(value), float(p), (float(ci[0]), float(ci[1])), float(target), side, curve, method, n)
 
