@@ -53,7 +53,7 @@ def test_text_summary_and_the_api_agree(run_cli, pop):
     (POP + "[[correlation]]\nbetween = [\"mu_drum\", \"x\"]\nrho = 0.1\n", [], ["correlation[0].between"]),
     (POP, ["--method", "magic"], ["--method", "auto"]),
     (POP, ["--design", "hand_force_N"], ["--target"]),
-    (POP, ["--design", "mu_drum", "--target", "0.01"], ["is varied"]),
+    (POP, ["--design", "mu_drum.middle", "--target", "0.01"], ["NAME.lower"]),
     (POP, ["--samples", "10"], ["--samples"]),
     (POP, ["--executor", "spark"], ["--executor", "local"]),
     (POP, ["--chart", "x.png"], ["--sensitivity"]),

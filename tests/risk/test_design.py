@@ -43,7 +43,16 @@ def test_rare_target_by_importance_sampling_and_a_spec_limit(write_population, t
 
 def test_design_errors_are_one_line(write_population):
     pop = load_population(write_population("[vary]\nmu_drum = { uniform = [0.3, 0.6] }\n"))
-    for name, target, words in [("mu_drum", 1e-3, "is varied"), ("hand_force", 1e-3, "hand_force_N"),
+    for name, target, words in [("hand_force", 1e-3, "hand_force_N"),
                                 ("hand_force_N", 2.0, "between 0 and 1"), ("mu_drum.middle", 1e-3, "NAME.lower")]:
         with pytest.raises(UserError, match=words):
             design(pop, name, target, samples=10_000)
+
+
+def test_a_varied_input_is_designed_by_its_nominal_value(write_population):
+    """μ_d ~ uniform [m − 0.15, m + 0.15]: the rate is (μ* − m + 0.15)/0.3 ≤ P, so m = μ* + 0.15 − 0.3·P."""
+    from tests.risk.truths import mu_threshold
+    pop = load_population(write_population("[vary]\nmu_drum = { uniform = [0.3, 0.6] }\n")).with_fixed(
+        "hand_force_N", 250.0)
+    d = design(pop, "mu_drum", 0.02, samples=200_000, seed=0)
+    assert d.side == "least" and abs(d.value - (mu_threshold(250.0) + 0.15 - 0.3 * 0.02)) < 1e-3

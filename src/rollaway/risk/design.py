@@ -1,8 +1,9 @@
 """The design that meets a target: the least (or greatest) value of one input keeping the rate ≤ P.
 
 *name* is a fixed input of the population (``hand_force_N``, ``grade_pct``, any parameter such as
-``drum_radius_m``) or a spec limit of a varied one (``mu_drum.lower``: the distribution truncated
-there — the parts below the limit are rejected at the supplier's inspection).
+``drum_radius_m``), a spec limit of a varied one (``mu_drum.lower``: the distribution truncated
+there — the parts below the limit are rejected at the supplier's inspection), or a varied input
+itself: then its nominal (median) value, the whole distribution moved with it and its scatter kept.
 
 The rate is estimated with **common random numbers**: one set of standard-normal scores (and model
 draws) serves every trial value, so the estimated rate is a monotone step function of a monotone
@@ -62,6 +63,13 @@ def _setter(population: Population, name: str):
         now = lo if side == "lower" else hi
         span = (lo, m.median()) if side == "lower" else (m.median(), hi)
         return (lambda v: population.with_marginal(m.with_bound(side, v))), span, now
+    if name in population.names:           # a varied input: its nominal (median) value, the scatter kept
+        m = population.marginal(name)
+        now = m.median()
+        lo, hi = RANGES[name]
+        if now > 0:
+            lo, hi = max(lo, now / 4.0), min(hi, now * 4.0)
+        return (lambda v: population.with_marginal(m.shifted_to(v))), (lo, hi), now
     now = population.fixed(name)
     lo, hi = RANGES[name]
     if now > 0:
@@ -74,9 +82,6 @@ def design(population: Population, name: str, target: float, samples: int = 1_00
     """Least or greatest value of *name* whose roll-away rate is ≤ *target* (module docstring)."""
     if not (isinstance(target, (int, float)) and 0 < target < 1):
         raise UserError(f"--target {target!r} must be a probability between 0 and 1, e.g. 1e-4 (100 ppm)")
-    if name in population.names:
-        raise UserError(f"--design {name}: '{name}' is varied; design a fixed input or a spec limit "
-                        f"('{name}.lower' or '{name}.upper')")
     make, (lo, hi), _ = _setter(population, name)
     n = int(min(samples, MAX_MC_CARS))
     rng = np.random.default_rng(seed)

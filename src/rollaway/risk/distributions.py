@@ -129,6 +129,18 @@ class Marginal:
             return Marginal(self.name, self.kind, self.args, tuple(x / total for x in w), None)
         return Marginal(self.name, self.kind, self.args, None, new)
 
+    def shifted_to(self, median: float) -> "Marginal":
+        """The same scatter moved so its median is *median* (a nominal value changed, tolerances kept):
+        added for uniform, normal, triangular and choice, a factor for the lognormal."""
+        if self.kind == "lognormal":
+            if median <= 0:
+                raise UserError(f"{self.name}: a lognormal median must be > 0, got {median:g}")
+            return Marginal(self.name, self.kind, (median, self.args[1]), self.weights, self.truncate)
+        delta = median - self.median()
+        trunc = None if self.truncate is None else (self.truncate[0] + delta, self.truncate[1] + delta)
+        args = tuple(a + delta for a in self.args) if self.kind != "normal" else (self.args[0] + delta, self.args[1])
+        return Marginal(self.name, self.kind, args, self.weights, trunc)
+
     def as_dict(self) -> dict:
         out = {self.kind: list(self.args)}
         if self.weights is not None:

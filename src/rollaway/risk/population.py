@@ -99,8 +99,7 @@ class Population:
     def with_fixed(self, name: str, value: float) -> "Population":
         """This population with one fixed (not varied) value changed, validated like the file's."""
         if name in self.names:
-            raise UserError(f"'{name}' is varied; a design changes a fixed value or a spec limit "
-                            f"('{name}.lower' or '{name}.upper')")
+            raise UserError(f"'{name}' is varied; change its distribution (with_marginal) instead of a fixed value")
         self.fixed(name)
         base = self.base.replace(**{name: (int(round(value)) if name == "occupants" else float(value))})
         return dataclasses.replace(self, base=base)
