@@ -113,3 +113,10 @@ def test_same_seed_same_answer_and_chunks_add_up(write_population):
         "hand_force_N", 250.0)
     a, b = estimate(pop, "mc", 600_000, seed=9), estimate(pop, "mc", 600_000, seed=9)
     assert a.total == b.total and a.samples == 600_000    # three chunks streamed
+
+
+def test_nothing_varied_is_plain_monte_carlo_whatever_the_method(write_population):
+    pop = load_population(write_population("")).with_fixed("hand_force_N", 200.0)
+    for method in ("is", "subset", "form", "auto"):
+        e = estimate(pop, method, 1000, seed=0)
+        assert e.method == "mc" and e.total.probability == 1.0      # 200 N cannot hold this car

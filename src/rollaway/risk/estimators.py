@@ -66,6 +66,10 @@ def estimate(population, method: str = "auto", samples: int = 1_000_000, seed: i
     if not (isinstance(samples, (int, np.integer)) and samples >= 100):
         raise UserError(f"--samples {samples} must be a whole number ≥ 100, e.g. 1000000")
     spent = 0
+    if population.dim == 0 and method != "mc":       # nothing varied (a calibrated model's own scatter at most)
+        est = monte_carlo(population, samples, seed, progress, executor)
+        return Estimate(est.total, est.brake, est.tyres, "mc", est.samples,
+                        {**est.detail, "note": f"nothing in [vary]: plain Monte Carlo instead of '{method}'"})
     if method == "auto":
         pilot = monte_carlo(population, min(PILOT, samples), seed, progress)
         if pilot.total.probability * pilot.samples >= AUTO_MC_FAILURES or population.dim == 0:
