@@ -13,7 +13,8 @@ The API (:mod:`rollaway.api`): :class:`DrumModel`, :func:`hold`, :func:`simulate
 :func:`check`, :func:`load_measurements`, :func:`diagnose`, :func:`fit`.  The names are imported
 on first use, so ``import rollaway`` (and ``rollaway --help``) stays fast.  ``rollaway.hold`` and
 ``rollaway.sweep`` are also the packages of those jobs (``from rollaway.hold import
-required_torque``); calling them calls the API functions.
+required_torque``); calling them calls the API functions.  So is ``rollaway.risk`` (the roll-away rate
+of a production population, :func:`rollaway.api.risk`).
 """
 __version__ = "0.1.0"
 
