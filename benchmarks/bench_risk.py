@@ -2,7 +2,7 @@
 
     python benchmarks/bench_risk.py [--quick]
 
-Cases (targets of the fleet-risk issue, in reference units):
+Cases (speed targets in reference units, docs/fleet-risk.md):
 
 * 10⁶ cars of the paper model, five varied inputs (``scenarios/populations/fmvss135-production.toml``),
   plain Monte Carlo: ≤ 2;
