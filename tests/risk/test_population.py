@@ -120,3 +120,12 @@ def test_bad_fixed_values_are_one_line_errors_like_a_scenario(write_population, 
     assert "\n" not in msg and str(path) in msg
     for w in words:
         assert w in msg, (w, msg)
+
+
+def test_the_example_populations_load():
+    from pathlib import Path
+    files = sorted((Path(__file__).resolve().parents[2] / "scenarios" / "populations").glob("*.toml"))
+    assert len(files) >= 2
+    for f in files:
+        pop = load_population(f)
+        assert pop.dim >= 3 and pop.description
