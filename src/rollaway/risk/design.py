@@ -135,7 +135,10 @@ def design_chart(d: Design, path, title: str = "") -> str:
     p = np.array([c[1] for c in d.curve])
     fig, ax = plt.subplots(figsize=(7, 4))
     floor = min(d.target / 100, np.min(p[p > 0]) if np.any(p > 0) else d.target / 100)
-    ax.semilogy(v, np.maximum(p, floor), "o-", color="#2c3e50", label="roll-away rate")
+    ax.semilogy(v[p > 0], p[p > 0], "o-", color="#2c3e50", label="roll-away rate")
+    if np.any(p <= 0):
+        ax.semilogy(v[p <= 0], np.full(np.sum(p <= 0), floor), "o", mfc="none", color="#7f8c8d",
+                    label="none rolled away in the sample")
     ax.axhline(d.target, color="#c0392b", ls="--", label=f"target {d.target * 1e6:g} ppm")
     ax.axvline(d.value, color="#27ae60", ls=":", label=f"{d.side} {d.name} = {d.value:.4g}")
     ax.set_xlabel(d.name)
