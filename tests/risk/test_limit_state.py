@@ -52,9 +52,10 @@ def test_a_model_with_effects_matches_the_numeric_hold_check(write_population, t
     v = pop.values_from_normal(np.random.default_rng(1).standard_normal((60, pop.dim)))
     got = margins(pop, v).brake
     want = min_brake_margin(pop.model, v["hand_force_N"], 20.0, "uphill", 5, 3600.0, mu_drum=v["mu_drum"])
-    near = np.abs(want - 1) < 0.25               # refined on the numeric check's grid: within its refinement
-    np.testing.assert_allclose(got[near], want[near], rtol=1e-4)
-    np.testing.assert_allclose(got, want, rtol=2e-3)
+    near = np.abs(want - 1) < 0.2                # refined by the numeric hold check itself
+    assert near.sum() >= 10
+    np.testing.assert_allclose(got[near], want[near], rtol=1e-9)
+    np.testing.assert_allclose(got, want, rtol=2e-3)   # far from 1: the 41-instant screen
 
 
 def test_a_calibrated_models_covariance_joins_the_scatter(write_population, tmp_path):

@@ -9,7 +9,9 @@ slope balance); with ``direction = "both"`` it must hold facing either way (the 
   the chain is plain numpy), so any parameter can vary;
 * **model with effects**: the torque may dip inside the hold, so the margin is evaluated on a time grid
   of :data:`SCREEN_POINTS` instants per car, and the cars whose screened minimum is below
-  :data:`REFINE_BELOW` again on the :data:`rollaway.hold.numeric.GRID_POINTS` grid of the numeric hold check.
+  :data:`REFINE_BELOW` again by the numeric hold check (:func:`rollaway.hold.numeric.least_margin`: its
+  grid and bracketing refinement), or — where a car varies a drum parameter that check does not take
+  per point — on its :data:`rollaway.hold.numeric.GRID_POINTS`-instant grid.
 
 A calibrated model brings its own uncertainty (:mod:`rollaway.uncertainty.draws`,
 :mod:`rollaway.uncertainty.predictive`): each car also gets one competing effect set (by its weight),
@@ -31,6 +33,12 @@ from rollaway.model.parameters import SPEC_BY_NAME
 SCREEN_POINTS = 41        # instants of the first pass over a hold with effects [assumed: ≥ 4 per effect time constant of minutes]
 REFINE_BELOW = 1.25       # screened margins below this are evaluated again on the fine grid [assumed]
 CHUNK_CARS = 4096         # cars evaluated together on a time grid (memory: CHUNK × grid floats per array)
+# parameters the numeric hold check takes per point, and those that act only through T_req and the tyres:
+# cars near the boundary that vary only these are refined by rollaway.hold.numeric.least_margin itself
+POINT_ARGS = frozenset({"mu_drum", "gap_m", "initial_drum_temp_C", "heat_transfer_W_m2K"})
+VEHICLE_ONLY = frozenset({"vehicle_mass_kg", "occupant_mass_kg", "wheel_radius_m", "gravity_m_s2", "wheelbase_m",
+                          "track_m", "cg_behind_front_m", "cg_height_m", "tyre_road_mu", "front_seat_behind_front_m",
+                          "rear_seat_behind_front_m", "seat_height_m"})
 
 
 @dataclass(frozen=True)
@@ -120,7 +128,14 @@ def _least_margin_with_effects(model: DrumModel, params, effect_values, force, g
     everyone = np.arange(n)
     least = grid_min(everyone, SCREEN_POINTS)
     near = np.flatnonzero(least < REFINE_BELOW)
-    if near.size:
+    if near.size and set(per_car) <= POINT_ARGS | VEHICLE_ONLY:    # the numeric hold check itself
+        from rollaway.hold.numeric import MarginFunction, least_margin
+        per = lambda k: None if k not in per_car else per_car[k][near]  # noqa: E731
+        fn = MarginFunction(model, cars["force"][near], cars["sign"][near], cars["t_req"][near], per("mu_drum"),
+                            per("gap_m"), per("initial_drum_temp_C"), per("heat_transfer_W_m2K"),
+                            values={k: v[near] for k, v in vals.items()} or None)
+        least[near] = least_margin(fn, cars["dur"][near])
+    elif near.size:
         least[near] = np.minimum(least[near], grid_min(near, GRID_POINTS))
     return least
 
