@@ -5,7 +5,6 @@ from scipy import stats
 
 from rollaway.errors import UserError
 from rollaway.risk import load_population
-from rollaway.risk.distributions import marginal_from_table
 
 GOOD = """[vary]
 mu_drum = { uniform = [0.3, 0.6] }
@@ -18,31 +17,6 @@ heat_transfer_W_m2K = { lognormal = [40, 0.15] }
 between = ["mu_drum", "initial_drum_temp_C"]
 rho = -0.6
 """
-
-
-@pytest.mark.parametrize("table, frozen", [
-    ({"uniform": [0.3, 0.6]}, stats.uniform(0.3, 0.3)),
-    ({"normal": [400, 35]}, stats.norm(400, 35)),
-    ({"lognormal": [40, 0.15]}, stats.lognorm(0.15, scale=40)),
-    ({"triangular": [27, 120, 300]}, stats.triang((120 - 27) / 273, 27, 273)),
-])
-def test_marginals_are_the_scipy_distributions_far_into_the_tails(table, frozen):
-    m = marginal_from_table("x", table, "f.toml")
-    z = np.array([-7.0, -4.0, -1.0, 0.0, 0.5, 3.0, 7.0])
-    p_lo, p_hi = stats.norm.cdf(z), stats.norm.sf(z)
-    expect = np.where(z < 0, frozen.ppf(p_lo), frozen.isf(p_hi))
-    np.testing.assert_allclose(m.from_normal(z), expect, rtol=1e-9)
-
-
-def test_truncation_and_weights_give_the_conditional_distribution():
-    m = marginal_from_table("x", {"normal": [400, 35], "truncate": [300, 480]}, "f.toml")
-    x = m.from_normal(np.random.default_rng(0).standard_normal(200_000))
-    assert x.min() >= 300 and x.max() <= 480
-    ref = stats.truncnorm((300 - 400) / 35, (480 - 400) / 35, 400, 35)
-    assert stats.kstest(x, ref.cdf).pvalue > 1e-3
-    c = marginal_from_table("occupants", {"choice": [0, 1, 5], "weights": [3, 1, 1]}, "f.toml")
-    v = c.from_normal(np.random.default_rng(1).standard_normal(100_000))
-    np.testing.assert_allclose([np.mean(v == k) for k in (0, 1, 5)], [0.6, 0.2, 0.2], atol=0.006)
 
 
 def test_population_file_reads_and_the_copula_correlates_the_normal_scores(write_population):

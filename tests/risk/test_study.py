@@ -31,13 +31,6 @@ def test_a_fake_simulator_that_disagrees_outside_the_threshold_is_counted(write_
     assert sim["flipped_outside_threshold"] == sum(not c["inside_threshold"] for c in rolls)
 
 
-def test_dask_chunks_give_the_same_rate_as_local_ones(write_population):
-    pop = load_population(write_population(POP)).with_fixed("hand_force_N", 250.0)
-    local = run_study(pop, samples=300_000, method="mc", seed=5)
-    dask = run_study(pop, samples=300_000, method="mc", seed=5, executor="dask")
-    assert local.probability == dask.probability and local.ci95 == dask.ci95
-
-
 def test_result_is_json_and_text(write_population, tmp_path):
     pop = load_population(write_population(POP + "heat_transfer_W_m2K = { lognormal = [40, 0.1] }\n"))
     r = run_study(pop, samples=10_000, method="mc", sensitivity=True, design="hand_force_N", target=0.01,

@@ -38,3 +38,8 @@ def rate_two_normals(mu_mean, mu_sd, f_mean, f_sd) -> float:
 
 def tyre_margin(**kw) -> float:
     return float(tyre_adhesion_margin(paper(), kw["grade_pct"], kw["direction"], kw["occupants"]))
+
+
+def misses_allowed(n: int) -> int:
+    """Most misses of a 95 % interval in n independent tries before it is implausible (P < 0.2 %)."""
+    return int(stats.binom.isf(0.002, n, 0.05))
