@@ -13,7 +13,8 @@ The API (:mod:`rollaway.api`): :class:`DrumModel`, :func:`hold`, :func:`simulate
 :func:`check`, :func:`load_measurements`, :func:`diagnose`, :func:`fit`.  The names are imported
 on first use, so ``import rollaway`` (and ``rollaway --help``) stays fast.  ``rollaway.hold`` and
 ``rollaway.sweep`` are also the packages of those jobs (``from rollaway.hold import
-required_torque``); calling them calls the API functions.
+required_torque``); calling them calls the API functions.  So is ``rollaway.risk`` (the roll-away rate
+of a production population, :func:`rollaway.api.risk`).
 """
 __version__ = "0.1.0"
 
@@ -31,10 +32,11 @@ _LAZY = {
     "load_parameters": "rollaway.model.parameters", "paper": "rollaway.model.parameters",
     "export_fmu": "rollaway.api",     # the drum model as an FMI 2.0 co-simulation FMU
 }
-_CALLABLE_PACKAGES = ("hold", "sweep")     # packages that are also the API functions of the same name
+_CALLABLE_PACKAGES = ("hold", "sweep", "risk")     # packages that are also the API functions of the same name
 
 __all__ = ["BrakeParameters", "BrakeSeries", "DrumModel", "HoldVerdict", "check", "diagnose", "drum_brake", "fit",
-           "hold", "load_measurements", "load_model", "load_parameters", "paper", "simulate", "sweep", "__version__"]
+           "hold", "load_measurements", "load_model", "load_parameters", "paper", "simulate", "sweep", "__version__",
+           "risk"]
 __all__ += ["export_fmu"]
 
 

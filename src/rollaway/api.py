@@ -14,6 +14,7 @@ seconds, ``_C`` degrees Celsius, ``_Nm`` newton-metres.
 :func:`load_measurements`          bench data (CSV) → ``Measurements``
 :func:`diagnose`                   which effect is the model missing? → ``Diagnosis``
 :func:`fit`                        refit with chosen effects (the error ladder) → ``Ladder``
+:func:`risk`                       roll-away rate of a production population → ``RiskResult``
 =================================  ============================================================
 
 This module is imported on first use of one of these names (``rollaway.__getattr__``), so
@@ -29,7 +30,7 @@ from rollaway.hold import HoldVerdict, analytic_verdict
 from rollaway.model.drum_model import DrumModel, as_model
 
 __all__ = ["DrumModel", "HoldVerdict", "check", "diagnose", "fit", "hold", "load_measurements",
-           "simulate", "sweep"]
+           "simulate", "sweep", "risk"]
 
 
 def hold(model="paper", *, grade_pct: float, hand_force_N: float, direction: str, occupants: int = 0,
@@ -328,3 +329,53 @@ def export_fmu(model, path, **options):
 
 
 __all__ += ["export_fmu"]
+def risk(population, *, samples: int = 1_000_000, method: str = "auto", seed: int | None = 0,
+         sensitivity: bool = False, design: str | None = None, target: float | None = None, chart=None,
+         simulate: int = 0, executor: str = "local", dask_address: str | None = None, params=None,
+         progress: bool = False):
+    """The roll-away rate of a production fleet, with its 95 % interval, what drives it and a design.
+
+    Parameters
+    ----------
+    population : str or path-like or rollaway.risk.Population
+        A population file (``scenarios/populations/*.toml``: a scenario's fixed values + ``[vary]``).
+    samples : int, default 1000000
+        Cars (limit-state evaluations) the estimate may use at most (Monte Carlo uses them all).
+    method : str, default "auto"
+        ``auto`` (a pilot Monte Carlo run decides), ``mc``, ``is`` (importance sampling around the FORM
+        design points), ``form`` (Φ(−β) with an importance-sampling check) or ``subset`` (OpenTURNS).
+    seed : int, optional
+        Seed of every random draw (the same seed gives the same answer).
+    sensitivity : bool, default False
+        Also the Sobol first and total indices of the least brake margin per varied name (SALib).
+    design, target : str and float, optional
+        The least (or greatest, on the safe side) value of the fixed input *design* — or the spec limit
+        ``NAME.lower``/``NAME.upper`` of a varied one — whose rate is ≤ *target*.
+    chart : str or path-like, optional
+        PNG of the sensitivity bars (and ``*-design.png`` of the design curve; the design curve alone
+        without ``sensitivity``).
+    simulate : int, default 0
+        Run this many sampled cars nearest the boundary in MuJoCo and count the verdicts it confirms.
+    executor, dask_address : str, optional
+        ``local`` or ``dask`` (Monte Carlo chunks on a ``dask.distributed`` cluster: the scheduler at
+        *dask_address*, or a local cluster).
+    params : str, optional
+        Another drum model for the population (a set name, parameter file or model file).
+    progress : bool, default False
+        A progress bar with ETA on the terminal.
+
+    Returns
+    -------
+    rollaway.risk.RiskResult
+        ``.probability``, ``.ci95``, ``.ppm``, ``.estimate`` (method, samples, per-mode rates),
+        ``.sensitivity``, ``.design``, ``.simulation``; ``.as_dict()`` and ``.summary()``.
+
+    Examples
+    --------
+    >>> r = rollaway.risk("scenarios/populations/fmvss135-production.toml", samples=200_000)  # doctest: +SKIP
+    >>> r.ppm, r.ci95, r.estimate.method                                                      # doctest: +SKIP
+    """
+    from rollaway.risk.study import run_study
+    return run_study(population, samples=samples, method=method, seed=seed, sensitivity=sensitivity,
+                     design=design, target=target, chart=chart, simulate=simulate, executor=executor,
+                     dask_address=dask_address, params=params, progress=progress)

@@ -27,6 +27,7 @@ COMMANDS = {
     "synth": "Write synthetic bench data from the model plus hidden effects.",
     "chart": "Design chart: least hand force against grade for drum models.",
     "export-fmu": "Export the drum model as an FMI 2.0 co-simulation FMU.",
+    "risk": "Roll-away rate of a production fleet (ppm, 95 % interval), drivers and design.",
 }
 
 

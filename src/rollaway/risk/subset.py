@@ -1,0 +1,57 @@
+"""Subset simulation (Au & Beck 2001) by OpenTURNS: rare rates without a design point.
+
+Why OpenTURNS: its ``SubsetSampling`` (conditional levels at p₀ = 0.1, modified Metropolis chains in
+the standard-normal space) is a tested implementation; it needs no gradient, so bounded and discrete
+inputs are no obstacle.  Its own coefficient of variation ignores the correlation of the chains and is
+too narrow (measured: two seeds' intervals did not overlap), so the interval here comes from
+independent runs instead.  Measured on a 1.2e-5 reference case its runs scatter far more than theory
+says (±40 % at 10 000 cars a level), so importance sampling is the first choice and this the fallback.
+"""
+from __future__ import annotations
+
+import numpy as np
+from scipy import stats
+
+from rollaway.errors import UserError
+from rollaway.risk.rates import Estimate, Evaluator, Rate
+
+SUBSET_RUNS = 4               # independent subset-simulation runs: their spread is the interval
+LEVELS = 6                    # levels a run is budgeted for (p₀ = 0.1: down to about 1e-6)
+
+
+def _subset_run(ev: Evaluator, d: int, per_level: int, seed: int, component: str) -> float:
+    import openturns as ot
+
+    ot.RandomGenerator.SetSeed(int(seed))
+    f = ot.PythonFunction(d, 1, func_sample=lambda x: ev.g(np.asarray(x), component)[:, None].tolist())
+    event = ot.ThresholdEvent(ot.CompositeRandomVector(f, ot.RandomVector(ot.Normal(d))), ot.Less(), 0.0)
+    algo = ot.SubsetSampling(event)
+    algo.setMaximumOuterSampling(1)
+    algo.setBlockSize(per_level)
+    algo.run()
+    return float(algo.getResult().getProbabilityEstimate())
+
+
+def subset(population, samples: int, seed: int | None = 0, progress=None) -> Estimate:
+    """Subset simulation by OpenTURNS: :data:`SUBSET_RUNS` independent runs of the rate; estimate = their
+    mean, interval = Student's t on their spread.  The budget goes to the rate alone: the per-mode
+    rates (brake, tyres) are not estimated (NaN)."""
+    d = population.dim
+    if d == 0:
+        raise UserError("method 'subset' needs at least one varied input in [vary]")
+    ev = Evaluator(population, np.random.default_rng(seed))
+    per_level = int(max(1000, min(samples // (SUBSET_RUNS * LEVELS), 200_000)))
+    base = int(np.random.SeedSequence(seed).generate_state(1)[0] % 2**30)
+    runs = []
+    for r in range(SUBSET_RUNS):
+        runs.append(_subset_run(ev, d, per_level, base + r, "least"))
+        if progress is not None:
+            progress(0)
+    runs = np.array(runs)
+    p = float(runs.mean())
+    half = float(stats.t.isf(0.025, SUBSET_RUNS - 1) * runs.std(ddof=1) / np.sqrt(SUBSET_RUNS))
+    nan = Rate(float("nan"), (float("nan"), float("nan")))
+    return Estimate(Rate(p, (max(p - half, 0.0), min(p + half, 1.0))), nan, nan, "subset", ev.calls,
+                    {"runs": SUBSET_RUNS, "samples_per_level": per_level,
+                     "interval": "Student's t over independent subset-simulation runs",
+                     "modes": "not estimated by subset simulation"})

@@ -1,0 +1,80 @@
+"""The vectorised limit state against the hold check car by car; a calibrated model's own scatter joins in."""
+import dataclasses
+
+import numpy as np
+import pytest
+from scipy import optimize, stats
+
+from rollaway.hold import analytic_verdict, min_brake_margin
+from rollaway.model.drum_model import Covariance, DrumModel
+from rollaway.risk import load_population
+from rollaway.risk.estimators import estimate
+from rollaway.risk.limit_state import margins
+
+VARY = """[vary]
+mu_drum = { uniform = [0.3, 0.6] }
+hand_force_N = { normal = [300, 45] }
+initial_drum_temp_C = { triangular = [27, 120, 300] }
+occupants = { choice = [0, 1, 5] }
+grade_pct = { uniform = [5, 35] }
+drum_radius_m = { normal = [0.09, 0.003] }
+"""
+
+
+def test_margins_equal_the_hold_check_of_each_car(write_population):
+    head = ('grade_pct = 20\ndirection = "both"\noccupants = 5\nhand_force_N = 400\nduration_s = 600\n'
+            'initial_drum_temp_C = 200\n')
+    pop = load_population(write_population(VARY, head=head))
+    v = pop.values_from_normal(np.random.default_rng(0).standard_normal((40, pop.dim)))
+    m = margins(pop, v)
+    for i in range(40):
+        params = pop.base.params.replace(drum_radius_m=float(v["drum_radius_m"][i]))
+        verdicts = [analytic_verdict(params, hand_force_N=v["hand_force_N"][i], grade_pct=v["grade_pct"][i],
+                                     direction=d, occupants=int(v["occupants"][i]), duration_s=600.0,
+                                     initial_temp_C=v["initial_drum_temp_C"][i], mu_drum=v["mu_drum"][i])
+                    for d in ("uphill", "downhill")]
+        assert m.brake[i] == pytest.approx(min(x.brake_margin_min for x in verdicts), rel=1e-9)
+        assert m.tyre[i] == pytest.approx(min(x.tyre_margin for x in verdicts), rel=1e-12)
+        assert m.fails[i] == (not all(x.holds for x in verdicts))
+
+
+def test_a_model_with_effects_matches_the_numeric_hold_check(write_population, tmp_path):
+    model = DrumModel("paper", ["lining_creep"], {"lining_creep.relaxed_fraction": 0.15,
+                                                  "lining_creep.relaxation_time_s": 900.0})
+    path = tmp_path / "creep.toml"
+    from rollaway.model.model_file import save_model
+    save_model(model, path)
+    head = (f'params = "{path.name}"\ngrade_pct = 20\ndirection = "uphill"\noccupants = 5\nhand_force_N = 400\n'
+            'duration_s = 3600\ninitial_drum_temp_C = 200\n')
+    pop = load_population(write_population("[vary]\nmu_drum = { uniform = [0.3, 0.6] }\n"
+                                           "hand_force_N = { normal = [300, 40] }\n", head=head))
+    assert pop.model.has_effects
+    v = pop.values_from_normal(np.random.default_rng(1).standard_normal((60, pop.dim)))
+    got = margins(pop, v).brake
+    want = min_brake_margin(pop.model, v["hand_force_N"], 20.0, "uphill", 5, 3600.0, mu_drum=v["mu_drum"])
+    near = np.abs(want - 1) < 0.2                # refined by the numeric hold check itself
+    assert near.sum() >= 10
+    np.testing.assert_allclose(got[near], want[near], rtol=1e-9)
+    np.testing.assert_allclose(got, want, rtol=2e-3)   # far from 1: the 41-instant screen
+
+
+def test_a_calibrated_models_covariance_joins_the_scatter(write_population, tmp_path):
+    """Nothing varied, μ_d fitted as N(0.36, 0.02): the rate is P(μ_d < μ*) of that normal (truncated to the
+    fitted value's bounds, which lie far out) — an exact truth from root finding."""
+    from rollaway.model.model_file import save_model
+    model = DrumModel(dataclasses.replace(DrumModel("paper").params, mu_drum=0.36),
+                      covariance=Covariance(("mu_drum",), np.array([[0.02 ** 2]])))
+    path = tmp_path / "cal.toml"
+    save_model(model, path)
+    head = (f'params = "{path.name}"\ngrade_pct = 20\ndirection = "uphill"\noccupants = 5\nhand_force_N = 250\n'
+            'duration_s = 300\ninitial_drum_temp_C = 200\n')
+    pop = load_population(write_population("", head=head))
+    mu_star = optimize.brentq(lambda mu: float(min_brake_margin(pop.model.params, 250.0, 20, "uphill", 5, 300.0,
+                                                                mu_drum=mu)) - 1, 0.05, 1.0)
+    truth = stats.norm.cdf(mu_star, 0.36, 0.02)
+    assert 0.05 < truth < 0.95
+    misses = 0
+    for seed in range(10):
+        e = estimate(pop, "mc", 20_000, seed=seed)
+        misses += not (e.total.ci95[0] <= truth <= e.total.ci95[1])
+    assert misses <= 3
