@@ -47,7 +47,7 @@ def radiative_convective_temperature_C(time_s, initial_temp_C, ambient_C, heat_t
         f0 = f[0]
         inside = g_target >= 0.0
         s_out = np.where(inside, np.interp(np.maximum(g_target, 0.0), g, s), s[0] + g_target / f0)
-        out[sel] = ta + sg * np.exp(s_out)
+        out[sel] = ta + np.sign(t0[sel] - ta) * np.exp(s_out)      # a drum at the ambient stays there
     return out.reshape(shape)
 
 

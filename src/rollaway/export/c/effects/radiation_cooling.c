@@ -29,20 +29,23 @@ static double radiation_interp(double x, const double *xp, const double *fp, int
     return slope * (x - xp[lo]) + fp[lo];
 }
 
-/* The table runs from T_0 down to T_a: a drum warming up from below the ambient is not covered
- * (rollaway's Python gives T_a - 0.1 mK there from t = 0 on); the FMU refuses it. */
+/* The table runs from T_0 to T_a on the side T_0 is on: side = +1 for a drum cooling down to the
+ * ambient, -1 for one warming up to it (s = ln|T - T_a|), as in Python. */
+static double radiation_side(const DrumState *s)
+{
+    return s->initial_temp_C >= s->ambient_C ? 1.0 : -1.0;
+}
+
 static int radiation_cooling_check(const DrumState *s, char *why, int size)
 {
-    if (s->initial_drum_temp_C >= s->ambient_temp_C) return 0;
-    snprintf(why, (size_t)size, "radiation_cooling: initial_drum_temp_C = %g is below ambient_temp_C = %g; the "
-             "radiation law covers a drum cooling down only", s->initial_drum_temp_C, s->ambient_temp_C);
-    return 1;
+    (void)s; (void)why; (void)size;
+    return 0;
 }
 
 static void radiation_cooling_setup(DrumState *s, double emissivity)
 {
     double ta = s->ambient_C, heat_capacity_J_K = drum_density_kg_m3 * drum_specific_heat_J_kgK * drum_volume_m3;
-    double top = fmax(s->initial_temp_C - ta, 1e-3) * 1.01;
+    double sg = radiation_side(s), top = fmax(sg * (s->initial_temp_C - ta), 1e-3) * 1.01;
     double start = log(1e-4), step = (log(top) - start) / (RADIATION_GRID - 1), f_prev = 0.0;
     int i;
     for (i = 0; i < RADIATION_GRID; i++) {        /* numpy.linspace, then the trapezoid rule */
@@ -50,7 +53,7 @@ static void radiation_cooling_setup(DrumState *s, double emissivity)
         s->radiation_s[i] = i == RADIATION_GRID - 1 ? log(top) : i * step + start;
         d = exp(s->radiation_s[i]);
         q = heat_transfer_W_m2K * cooled_area_m2 * d + emissivity * STEFAN_BOLTZMANN_W_m2K4 * cooled_area_m2
-            * (pow(ta + d + KELVIN, 4.0) - pow(ta + KELVIN, 4.0));
+            * sg * (pow(ta + sg * d + KELVIN, 4.0) - pow(ta + KELVIN, 4.0));
         f = heat_capacity_J_K * d / q;
         if (i == 0) {
             s->radiation_g[0] = 0.0;
@@ -65,7 +68,7 @@ static void radiation_cooling_setup(DrumState *s, double emissivity)
 
 static double radiation_cooling_drum_temperature(const DrumState *s, double temp_C, double emissivity)
 {
-    double ta = s->ambient_C, t0 = s->initial_temp_C, d0 = fmax(t0 - ta, 1e-4), s_out, sign;
+    double ta = s->ambient_C, t0 = s->initial_temp_C, d0 = fmax(radiation_side(s) * (t0 - ta), 1e-4), s_out, sign;
     double g_target = radiation_interp(log(d0), s->radiation_s, s->radiation_g, RADIATION_GRID) - s->time_s;
     (void)temp_C; (void)emissivity;
     if (g_target >= 0.0)
