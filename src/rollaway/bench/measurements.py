@@ -83,8 +83,10 @@ class Measurements:
         """Rows read from the log, kept, and seen by the fits (after a reduction), for reports and JSON."""
         red = self.reduction
         if red is None:
-            return {"rows_read": len(self), "rows_kept": len(self), "rows": len(self), "window_s": None}
-        return {"rows_read": red.rows_read, "rows_kept": red.rows_kept, "rows": len(self), "window_s": red.window_s}
+            return {"rows_read": len(self), "rows_kept": len(self), "rows": len(self), "window_s": None,
+                    "notes": list(self.notes)}
+        return {"rows_read": red.rows_read, "rows_kept": red.rows_kept, "rows": len(self), "window_s": red.window_s,
+                "notes": list(self.notes)}
 
     def subset(self, mask) -> "Measurements":
         """Rows where *mask* is true (whole tests keep their T_0)."""
@@ -124,8 +126,13 @@ def _isnan(v) -> bool:
     return isinstance(v, float) and math.isnan(v)
 
 
-def load_measurements(path: str | Path) -> Measurements:
-    """Read and validate a measurement CSV; raise UserError listing every problem."""
+def load_measurements(path: str | Path, window_s: float | None = 0) -> Measurements:
+    """Read and validate a measurement CSV; raise UserError listing every problem.
+
+    The file is tokenized here (Python's csv module: exact line numbers, every bad cell listed); the rules
+    for each test (one force and direction, time order, start at 0, rows before the lever, the time unit)
+    are the streaming reader's (:class:`rollaway.bench.reduction.Reducer`), so a log gives the same rows or
+    the same error whichever reader takes it.  *window_s*: 0 every sample a row, None automatic."""
     path = Path(path)
     if not path.is_file():
         raise UserError(f"measurement file '{path}' does not exist; check the path")
@@ -136,23 +143,30 @@ def load_measurements(path: str | Path) -> Measurements:
     if "\x00" in text:
         line = text[:text.index("\x00")].count("\n") + 1
         raise UserError(f"{path}, line {line}: a NUL byte; this is not a text CSV file — export the data again")
-    reader = csv.reader(text.splitlines())
-    numbered = []
-    try:
-        for row in reader:
-            numbered.append((reader.line_num, row))
-    except csv.Error as exc:
-        raise UserError(f"{path}, line {reader.line_num}: {exc}; a cell that long or broken quoting is not bench "
-                        f"data — check the quotes on this line") from None
-    numbered = [(n, r) for n, r in numbered if any(c.strip() for c in r)]
+    numbered = csv_rows(text.splitlines(), path)
     if not numbered:
         raise UserError(f"{path}, line 1: the file is empty; expected the header "
                         f"{','.join(REQUIRED)}")
     (hline, header), body = numbered[0], numbered[1:]
-    return _parse([h.strip() for h in header], body, str(path), hline)
+    return _parse([h.strip() for h in header], body, str(path), hline, window_s)
 
 
-def _parse(header: list[str], body: list[tuple[int, list[str]]], src: str, hline: int = 1) -> Measurements:
+def csv_rows(lines, path, delimiter: str = ",") -> list[tuple[int, list[str]]]:
+    """(line number, cells) of every non-blank CSV row; a broken quote or an oversized cell is a UserError."""
+    reader = csv.reader(lines, delimiter=delimiter)
+    numbered = []
+    try:
+        for row in reader:
+            if any(c.strip() for c in row):
+                numbered.append((reader.line_num, row))
+    except csv.Error as exc:
+        raise UserError(f"{path}, line {reader.line_num}: {exc}; a cell that long or broken quoting is not bench "
+                        f"data — check the quotes on this line") from None
+    return numbered
+
+
+def _parse(header: list[str], body: list[tuple[int, list[str]]], src: str, hline: int = 1,
+           window_s: float | None = 0) -> Measurements:
     problems: list[str] = []
     known = REQUIRED + OPTIONAL
     notes = []
@@ -172,14 +186,14 @@ def _parse(header: list[str], body: list[tuple[int, list[str]]], src: str, hline
         _raise(problems)
     if not body:
         _raise([f"{src}, line {hline + 1}: no data rows after the header; add one row per sample"])
+    ragged = [f"{src}, line {n}: {len(row)} fields but the header has {len(header)}; fix the commas on this line"
+              for n, row in body if len(row) != len(header)]
+    if ragged:                          # the streaming reader stops at the first such row too
+        _raise(ragged)
     col = {name: header.index(name) for name in known if name in header}
     values: dict[str, list] = {name: [] for name in col}
     lines = []
     for lineno, row in body:
-        if len(row) != len(header):
-            problems.append(f"{src}, line {lineno}: {len(row)} fields but the header has {len(header)}; "
-                            f"fix the commas on this line")
-            continue
         lines.append(lineno)
         for name, j in col.items():
             cell = row[j].strip()
@@ -196,18 +210,29 @@ def _parse(header: list[str], body: list[tuple[int, list[str]]], src: str, hline
                 values[name].append(_number(cell, src, lineno, name, problems))
     if problems:
         _raise(problems)
-    arr = {k: np.array(v, dtype=object if k in ("test_id", "direction") else float) for k, v in values.items()}
-    line = np.array(lines)
-    _check_tests(arr, line, src, problems)
-    if problems:
-        _raise(problems)
-    return Measurements(arr["test_id"].astype(str), arr["direction"].astype(str), arr["hand_force_N"],
-                        arr["time_s"], arr["drum_temp_C"], arr["torque_Nm"], arr.get("ambient_C"), src, line,
-                        notes)
+    return _through_reducer(values, np.array(lines), src, hline, window_s, notes)
+
+
+def _through_reducer(values: dict, lines: np.ndarray, src: str, hline: int, window_s, notes) -> Measurements:
+    """The per-test rules and the rows of :class:`rollaway.bench.reduction.Reducer` (one set of rules)."""
+    from rollaway.bench.batch import Batch, Text
+    from rollaway.bench.reduction import Reducer
+
+    def text(cells):
+        names = list(dict.fromkeys(cells))
+        index = {c: i for i, c in enumerate(names)}
+        return Text(np.array([index[c] for c in cells], np.int64), names)
+
+    arr = {k: np.array(v, float) for k, v in values.items() if k not in ("test_id", "direction")}
+    red = Reducer(keep_raw=2 ** 62 if window_s == 0 else None)
+    red.add(Batch(src, hline + 1, "line", text(values["test_id"]), text(values["direction"]), arr["hand_force_N"],
+                  arr["time_s"], arr["drum_temp_C"], arr["torque_Nm"], arr.get("ambient_C"), {}, lines))
+    return red.finish(src, 1, window_s, notes)
 
 
 def _number(cell: str, src: str, lineno: int, name: str, problems: list[str]) -> float:
-    lo, hi, unit = LIMITS[name]
+    """A cell as a number; a cell that is not one is listed (ranges are the reducer's, as for every reader)."""
+    unit = LIMITS[name][2]
     try:
         v = float(cell)
     except ValueError:
@@ -217,40 +242,7 @@ def _number(cell: str, src: str, lineno: int, name: str, problems: list[str]) ->
     if not math.isfinite(v):
         problems.append(f"{src}, line {lineno}, column '{name}': {cell!r} is not a finite number; give a measured "
                         f"value in {unit} or delete the row")
-    elif not lo <= v <= hi:
-        problems.append(f"{src}, line {lineno}, column '{name}': {v:g} {unit} is outside [{lo:g}, {hi:g}]; "
-                        f"check the unit")
     return v
-
-
-def _check_tests(arr: dict, line: np.ndarray, src: str, problems: list[str]) -> None:
-    tid = arr["test_id"]
-    for t in dict.fromkeys(tid.tolist()):
-        rows = np.flatnonzero(tid == t)
-        for name in ("hand_force_N", "direction"):
-            first = arr[name][rows[0]]
-            for r in rows[1:]:
-                if arr[name][r] != first:
-                    what = "hand forces" if name == "hand_force_N" else "directions"
-                    problems.append(f"{src}, line {line[r]}, column '{name}': test '{t}' has two {what} "
-                                    f"({first} on line {line[rows[0]]}, {arr[name][r]} here); one test is one "
-                                    f"lever application — give it a new test_id")
-                    break
-        times = arr["time_s"][rows]
-        for k in range(1, len(rows)):
-            if times[k] == times[k - 1]:
-                problems.append(f"{src}, line {line[rows[k]]}, column 'time_s': duplicate time {times[k]:g} s in "
-                                f"test '{t}' (also on line {line[rows[k - 1]]}); remove one of the rows")
-            elif times[k] < times[k - 1]:
-                problems.append(f"{src}, line {line[rows[k]]}, column 'time_s': time decreases in test '{t}' "
-                                f"({times[k - 1]:g} s on line {line[rows[k - 1]]}, then {times[k]:g} s); sort the "
-                                f"rows of each test by time")
-        if times[0] != 0.0:
-            problems.append(f"{src}, line {line[rows[0]]}, column 'time_s': test '{t}' starts at {times[0]:g} s; "
-                            f"each test must start at time_s = 0 (lever applied), which defines its T_0")
-        if len(rows) < 3:
-            problems.append(f"{src}, line {line[rows[0]]}, column 'test_id': test '{t}' has {len(rows)} sample(s); "
-                            f"give at least 3 per test")
 
 
 def _raise(problems: list[str]) -> None:

@@ -24,6 +24,7 @@ batch of the log plus a few numbers per second of log.
 from __future__ import annotations
 
 import math
+import re
 from dataclasses import dataclass, field, replace
 
 import numpy as np
@@ -32,6 +33,7 @@ from rollaway.errors import UserError, suggest
 from rollaway.bench.measurements import LIMITS, MAX_LISTED, Measurements, _raise
 from rollaway.bench.noise import Noise, sample_sigma
 from rollaway.bench.rawnoise import dispersion, raw_noise
+from rollaway.bench.time_axis import epoch_message, long_test_message
 from rollaway.physics.drum import DIRECTIONS
 
 BIN_S = 1.0                 # statistics are kept per second of log, windows are whole numbers of seconds
@@ -107,12 +109,16 @@ class Reducer:
         self.before_zero = 0                  # rows logged before the lever was applied (t < 0): not kept
         self.keep_raw = KEEP_RAW_ROWS if keep_raw is None else keep_raw
         self.has_ambient: bool | None = None
+        self.time_column: tuple[str, str, bool] | None = None   # (as described, header cell, unit stated)
 
     # -- one batch -------------------------------------------------------------------------
     def add(self, b) -> None:
         problems: list[str] = []
         n = len(b)
         self.rows += n
+        if self.time_column is None:
+            r = b.columns.get("time_s")
+            self.time_column = (b.column("time_s"), r.header if r else "time_s", bool(r and r.unit))
         if self.has_ambient is None:
             self.has_ambient = b.ambient_C is not None
         elif self.has_ambient != (b.ambient_C is not None):
@@ -137,7 +143,7 @@ class Reducer:
             i = int(np.flatnonzero(dcodes < 0)[0])
             problems.append(f"{b.at(i)}, column {b.column('direction')}: empty; give 'downhill' or 'uphill'")
         if problems:
-            _raise(problems)
+            _raise(sorted(problems, key=_line_of))
         order = np.argsort(codes, kind="stable")
         splits = np.flatnonzero(np.diff(codes[order])) + 1
         for rows in np.split(order, splits):
@@ -146,7 +152,7 @@ class Reducer:
             if len(problems) >= MAX_LISTED:
                 break
         if problems:
-            _raise(problems)
+            _raise(sorted(problems, key=_line_of))
 
     def _segment(self, b, rows: np.ndarray, problems: list[str]) -> None:
         name = b.test_id.names[int(b.test_id.codes[rows[0]])]
@@ -185,6 +191,10 @@ class Reducer:
             if not rows.size:
                 return
         if st.n == 0 and t[0] != 0.0:
+            epoch = epoch_message(b.at(rows[0]), b.column("time_s"), t[0])
+            if epoch:
+                problems.append(epoch)
+                return
             problems.append(f"{b.at(rows[0])}, column {b.column('time_s')}: test '{name}' starts at {t[0]:g} s; each "
                             f"test must start at time 0 (lever applied), which defines its T_0 — shift its times")
             return
@@ -235,6 +245,12 @@ class Reducer:
         if short:
             _raise([f"{t.where}, column 'test_id': test '{t.name}' has {t.n} sample(s); give at least 3 per test"
                     for t in short])
+        column, header, stated = self.time_column or ("'time_s'", "time_s", False)
+        if not stated:
+            long = [m for t in self.tests.values() if (m := long_test_message(t.last_where, column, header, t.name,
+                                                                              t.last_t))]
+            if long:
+                _raise(long)
         durations = np.array([t.last_t for t in self.tests.values()])
         counts = np.array([t.n for t in self.tests.values()])
         rate = float(np.median((counts - 1) / np.maximum(durations, 1e-300)))      # samples per second
@@ -242,7 +258,8 @@ class Reducer:
             w = auto_window(rate, float(durations.max()))
             reduce = rate * w >= MIN_PER_WINDOW
         else:
-            if window_s < 0 or (window_s > 0 and abs(window_s / BIN_S - round(window_s / BIN_S)) > 1e-9):
+            whole = math.isfinite(window_s) and abs(window_s / BIN_S - round(window_s / BIN_S)) <= 1e-9
+            if not math.isfinite(window_s) or window_s < 0 or (window_s > 0 and not whole):
                 raise UserError(f"--window-s {window_s:g}: give a whole number of seconds ≥ 1 (0: fit every sample)")
             w, reduce = float(window_s), window_s > 0
             per_window = rate * w
@@ -355,10 +372,19 @@ def _check_numbers(b, q: str, x: np.ndarray, problems: list[str], lower: bool = 
     out = (x < lo) | (x > hi)
     if np.any(out):
         i = int(np.flatnonzero(out)[0])
+        if q == "time_s" and (epoch := epoch_message(b.at(i), b.column(q), x[i])):
+            problems.append(epoch)
+            return
         r = b.columns.get(q)
         read = f" (read as {r.unit})" if r is not None and r.unit else ""
         problems.append(f"{b.at(i)}, column {b.column(q)}: {x[i]:g} {unit} is outside [{lo:g}, {hi:g}]{read}; check "
                         f"the unit (map it with --columns '{q}=<column>[unit]')")
+
+
+def _line_of(problem: str) -> int:
+    """The line (or row) a problem names, to list problems in file order whichever check found them."""
+    m = re.search(r", (?:line|row) (\d+)", problem)
+    return int(m.group(1)) if m else 0
 
 
 def reduce_measurements(data: Measurements, window_s: float | None = None) -> Measurements:

@@ -69,13 +69,13 @@ def load_data(path, columns=(), manifest=None, window_s=None):
         columns = [own]
         notes.append(f"column map {own}")
     colmap = column_map(columns)
-    streaming = bool(colmap) or manifest or window_s is not None or is_lab_format(p) or \
-        (p.is_file() and p.stat().st_size > SMALL_CSV_BYTES)
+    streaming = bool(colmap) or manifest or is_lab_format(p) or (p.is_file() and p.stat().st_size > SMALL_CSV_BYTES)
     if streaming:
         from rollaway.bench.sources import read_log
         data = read_log(p, colmap, manifest, window_s, notes)
-    else:
-        data = load_measurements(path)
+    else:                       # the same rules and rows as the streaming reader (bench.measurements)
+        data = load_measurements(path, window_s)
+        data.notes[:0] = notes
     for note in data.notes:
         typer.echo(f"note: {note}", err=True)
     return data
