@@ -94,7 +94,7 @@ class Measurements:
         return Measurements(self.test_id[m], self.direction[m], self.hand_force_N[m], self.time_s[m],
                             self.drum_temp_C[m], self.torque_Nm[m],
                             None if self.ambient_C is None else self.ambient_C[m], self.source,
-                            None if self.line is None else self.line[m], [],
+                            None if self.line is None else self.line[m], list(self.notes),
                             None if self.torque_sigma_Nm is None else self.torque_sigma_Nm[m],
                             None if self.temp_sigma_C is None else self.temp_sigma_C[m],
                             None if self.count is None else self.count[m], self.reduction)
