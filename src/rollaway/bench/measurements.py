@@ -143,12 +143,16 @@ def load_measurements(path: str | Path, window_s: float | None = 0) -> Measureme
     if "\x00" in text:
         line = text[:text.index("\x00")].count("\n") + 1
         raise UserError(f"{path}, line {line}: a NUL byte; this is not a text CSV file — export the data again")
-    numbered = csv_rows(text.splitlines(), path)
+    from rollaway.bench.readers import sniff_dialect
+    lines = text.splitlines()
+    filled = [x for x in lines if x.strip()]
+    delim, decimal = sniff_dialect(filled[0], filled[1] if len(filled) > 1 else "") if filled else (",", ".")
+    numbered = csv_rows(lines, path, delim)
     if not numbered:
         raise UserError(f"{path}, line 1: the file is empty; expected the header "
                         f"{','.join(REQUIRED)}")
     (hline, header), body = numbered[0], numbered[1:]
-    return _parse([h.strip() for h in header], body, str(path), hline, window_s)
+    return _parse([h.strip() for h in header], body, str(path), hline, window_s, (delim, decimal))
 
 
 def csv_rows(lines, path, delimiter: str = ",") -> list[tuple[int, list[str]]]:
@@ -166,7 +170,10 @@ def csv_rows(lines, path, delimiter: str = ",") -> list[tuple[int, list[str]]]:
 
 
 def _parse(header: list[str], body: list[tuple[int, list[str]]], src: str, hline: int = 1,
-           window_s: float | None = 0) -> Measurements:
+           window_s: float | None = 0, dialect: tuple[str, str] = (",", ".")) -> Measurements:
+    """Header and cells as the streaming reader tokenizes them (a ragged row, a cell that is not a number: listed
+    here); empty cells, test ids, directions, ranges and each test's rules: the reducer's."""
+    from rollaway.bench.readers import parse_number, ragged_message
     problems: list[str] = []
     known = REQUIRED + OPTIONAL
     notes = []
@@ -186,31 +193,24 @@ def _parse(header: list[str], body: list[tuple[int, list[str]]], src: str, hline
         _raise(problems)
     if not body:
         _raise([f"{src}, line {hline + 1}: no data rows after the header; add one row per sample"])
-    ragged = [f"{src}, line {n}: {len(row)} fields but the header has {len(header)}; fix the commas on this line"
-              for n, row in body if len(row) != len(header)]
-    if ragged:                          # the streaming reader stops at the first such row too
-        _raise(ragged)
     col = {name: header.index(name) for name in known if name in header}
     values: dict[str, list] = {name: [] for name in col}
-    lines = []
-    for lineno, row in body:
-        lines.append(lineno)
+    for lineno, row in body:            # in file order, as the streaming reader finds them
+        if len(row) != len(header):
+            problems.append(ragged_message(src, lineno, len(row), len(header), dialect[0]))
+            continue
         for name, j in col.items():
-            cell = row[j].strip()
-            if name == "test_id":
-                if not cell:
-                    problems.append(f"{src}, line {lineno}, column 'test_id': empty; give every row its test id")
-                values[name].append(cell)
-            elif name == "direction":
-                if cell not in DIRECTIONS:
-                    problems.append(f"{src}, line {lineno}, column 'direction': unknown direction {cell!r}"
-                                    f"{suggest(cell.lower(), DIRECTIONS)}; use 'downhill' or 'uphill'")
-                values[name].append(cell)
-            else:
-                values[name].append(_number(cell, src, lineno, name, problems))
+            if name in ("test_id", "direction"):
+                values[name].append(row[j].strip())
+                continue
+            v = parse_number(row[j], dialect[1])
+            if v is None:
+                problems.append(f"{src}, line {lineno}, column '{name}': {row[j].strip()!r} is not a number; give a "
+                                f"value in {LIMITS[name][2]}")
+            values[name].append(math.nan if v is None else v)
     if problems:
         _raise(problems)
-    return _through_reducer(values, np.array(lines), src, hline, window_s, notes)
+    return _through_reducer(values, np.array([n for n, _ in body]), src, hline, window_s, notes)
 
 
 def _through_reducer(values: dict, lines: np.ndarray, src: str, hline: int, window_s, notes) -> Measurements:
@@ -219,30 +219,15 @@ def _through_reducer(values: dict, lines: np.ndarray, src: str, hline: int, wind
     from rollaway.bench.reduction import Reducer
 
     def text(cells):
-        names = list(dict.fromkeys(cells))
+        names = [c for c in dict.fromkeys(cells) if c]
         index = {c: i for i, c in enumerate(names)}
-        return Text(np.array([index[c] for c in cells], np.int64), names)
+        return Text(np.array([index.get(c, -1) for c in cells], np.int64), names)
 
     arr = {k: np.array(v, float) for k, v in values.items() if k not in ("test_id", "direction")}
     red = Reducer(keep_raw=2 ** 62 if window_s == 0 else None)
     red.add(Batch(src, hline + 1, "line", text(values["test_id"]), text(values["direction"]), arr["hand_force_N"],
                   arr["time_s"], arr["drum_temp_C"], arr["torque_Nm"], arr.get("ambient_C"), {}, lines))
     return red.finish(src, 1, window_s, notes)
-
-
-def _number(cell: str, src: str, lineno: int, name: str, problems: list[str]) -> float:
-    """A cell as a number; a cell that is not one is listed (ranges are the reducer's, as for every reader)."""
-    unit = LIMITS[name][2]
-    try:
-        v = float(cell)
-    except ValueError:
-        problems.append(f"{src}, line {lineno}, column '{name}': {cell!r} is not a number; give a value in {unit}"
-                        if cell else f"{src}, line {lineno}, column '{name}': empty cell; give a value in {unit}")
-        return math.nan
-    if not math.isfinite(v):
-        problems.append(f"{src}, line {lineno}, column '{name}': {cell!r} is not a finite number; give a measured "
-                        f"value in {unit} or delete the row")
-    return v
 
 
 def _raise(problems: list[str]) -> None:

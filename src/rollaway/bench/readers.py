@@ -21,6 +21,19 @@ BLOCK_BYTES = 1 << 20         # CSV block (≈ 25 000 rows): pyarrow keeps ~30 b
 #                                 the reader to ~40 MB (16 MB blocks: ~500 MB); larger blocks are not faster here
 BATCH_ROWS = 262_144            # Parquet rows per batch
 DIALECT = (",", ".")            # CSV delimiter and decimal mark
+# cells pyarrow reads as missing in a numeric column (its default null_values): NaN for every reader
+NULLS = frozenset(("", "#N/A", "#N/A N/A", "#NA", "-1.#IND", "-1.#QNAN", "-NaN", "-nan", "1.#IND", "1.#QNAN", "N/A",
+                   "NA", "NULL", "NaN", "n/a", "nan", "null"))
+NUMBER = re.compile(r"[+-]?(\d+\.?\d*|\.\d+)([eE][+-]?\d+)?|[+-]?(inf|infinity)", re.IGNORECASE)
+
+
+def parse_number(cell: str, decimal: str = ".") -> float | None:
+    """A numeric cell as pyarrow reads it: a missing-value mark → NaN, a number → float, anything else → None."""
+    c = cell.strip()
+    if c in NULLS:
+        return float("nan")
+    c = c.replace(decimal, ".") if decimal != "." else c
+    return float(c) if NUMBER.fullmatch(c) else None
 
 
 def sniff_dialect(header_line: str, data_line: str) -> tuple[str, str]:
@@ -61,7 +74,7 @@ def csv_batches(fp):
     types = {r.header: (pa.dictionary(pa.int32(), pa.string()) if q in TEXT else pa.float64())
              for q, r in fp.columns.items()}
     ro = pcsv.ReadOptions(block_size=BLOCK_BYTES, skip_rows=fp.header_line - 1, use_threads=True)
-    co = pcsv.ConvertOptions(include_columns=list(types), column_types=types, strings_can_be_null=True,
+    co = pcsv.ConvertOptions(include_columns=list(types), column_types=types, strings_can_be_null=False,
                              decimal_point=fp.dialect[1])
     first = fp.header_line + 1
     try:
@@ -87,21 +100,19 @@ def first_bad_row(fp) -> str | None:
                 if n <= fp.header_line or not any(c.strip() for c in row):
                     continue
                 if len(row) != len(fp.header):
-                    return (f"{fp.path}, line {n}: {len(row)} fields but the header has {len(fp.header)}; fix the "
-                            f"separators ('{delim}') on this line")
+                    return ragged_message(fp.path, n, len(row), len(fp.header), delim)
                 for j, h in numeric.items():
-                    c = row[j].strip()
-                    if not c:
-                        continue
-                    try:
-                        float(c.replace(decimal, "."))
-                    except ValueError:
-                        return (f"{fp.path}, line {n}, column '{h}': {c!r} is not a number; give a value or delete "
-                                f"the row")
+                    if parse_number(row[j], decimal) is None:
+                        return (f"{fp.path}, line {n}, column '{h}': {row[j].strip()!r} is not a number; give a "
+                                f"value or delete the row")
         except csv.Error as exc:
             return (f"{fp.path}, line {reader.line_num}: {exc}; a cell that long or broken quoting is not bench "
                     f"data — check the quotes on this line")
     return None
+
+
+def ragged_message(path, line: int, fields: int, header: int, delim: str = ",") -> str:
+    return f"{path}, line {line}: {fields} fields but the header has {header}; fix the separators ('{delim}') on this line"
 
 
 def parquet_batches(fp):

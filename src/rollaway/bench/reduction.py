@@ -366,7 +366,7 @@ def _check_numbers(b, q: str, x: np.ndarray, problems: list[str], lower: bool = 
     bad = ~np.isfinite(x)
     if np.any(bad):
         i = int(np.flatnonzero(bad)[0])
-        problems.append(f"{b.at(i)}, column {b.column(q)}: empty or not a finite number ({int(bad.sum())} such "
+        problems.append(f"{b.at(i)}, column {b.column(q)}: empty cell or not a finite number ({int(bad.sum())} such "
                         f"cell{'s' if bad.sum() > 1 else ''} in these rows); give a measured value or delete the row")
         return
     out = (x < lo) | (x > hi)

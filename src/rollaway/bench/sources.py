@@ -169,17 +169,21 @@ def batches(fp: FilePlan):
 
 
 def _text(arr, n: int) -> Text:
+    """A text column as codes into its distinct names (stripped; an empty cell: code −1)."""
     import pyarrow as pa
     import pyarrow.compute as pc
     if isinstance(arr, pa.ChunkedArray):
         arr = arr.combine_chunks()
     if not pa.types.is_dictionary(arr.type):
         arr = pc.cast(arr, pa.string()).dictionary_encode()
-    codes = arr.indices.to_numpy(zero_copy_only=False)
+    codes = np.asarray(arr.indices.to_numpy(zero_copy_only=False), np.int64)
     if arr.null_count:
         codes = np.where(arr.is_valid().to_numpy(zero_copy_only=False), codes, -1)
-    names = [str(v).strip() for v in arr.dictionary.to_pylist()]
-    return Text(np.asarray(codes, np.int64), names)
+    raw = [str(v).strip() for v in arr.dictionary.to_pylist()]
+    names = [v for v in dict.fromkeys(raw) if v]
+    index = {v: i for i, v in enumerate(names)}
+    remap = np.array([index.get(v, -1) for v in raw] + [-1], np.int64)    # ' A' and 'A' are one test; '' none
+    return Text(remap[codes], names)
 
 
 def _number(fp: FilePlan, arr, q: str) -> np.ndarray:
