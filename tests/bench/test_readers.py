@@ -32,7 +32,7 @@ def logs(draw):
         direction = draw(st.sampled_from(["downhill", "uphill"]))
         force = draw(st.sampled_from(["200", "250.5"]))
         pre = draw(st.integers(0, 2))           # rows logged before the lever (negative time)
-        times = [-(pre - i) * 1.5 for i in range(pre)] + [i * 60.0 for i in range(draw(st.integers(1, 5)))]
+        times = [-(pre - i) * 1.5 for i in range(pre)] + [i * 60.0 for i in range(draw(st.integers(3, 6)))]
         rows += [[f"T{k}", direction, force, f"{t:g}", f"{200 - t / 10:.2f}", f"{900 + t / 100:.2f}"]
                  for t in times]
     for row, col, cell in draw(st.lists(st.tuples(st.integers(0, len(rows) - 1), st.integers(0, 6),

@@ -32,6 +32,8 @@ def synth(
     from rollaway.identify.synth import DEFAULT_HAND_FORCES_N
     from rollaway.identify.synth import synth as run
 
+    if not effect:
+        opt.only_with("--effect NAME (synth hides only the effects it is given)", **{"--effect-file": effect_file})
     load_plugins(effect_file)
     data = run(parse_effects(effect), params=params, seed=seed, noise_torque_Nm=noise_torque_Nm,
                noise_temp_C=noise_temp_C, mu_drum=mu, heat_transfer_W_m2K=h,
