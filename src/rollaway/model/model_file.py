@@ -68,8 +68,8 @@ def model_parts(data: dict, where: str = "model", base_dir: Path | None = None) 
     for key, value in data.items():
         if isinstance(value, dict):
             raise UserError(f"{where}: key '{key}' is a table{suggest(key, TABLES)}; parameters are top-level "
-                            f"'name = value' lines, and a model file's only tables are [effects.NAME], [covariance] "
-                            f"and [provenance]")
+                            f"'name = value' lines, and a model file's only tables are [effects.NAME], [covariance], "
+                            f"[provenance], [calibration] and [predictive]")
     params = parameters_from_mapping(data, where=where)
     base = data.get("extends") if isinstance(data.get("extends"), str) else None
     effects, values, files = _effects(tables.get("effects", {}), where, base_dir)
@@ -141,7 +141,8 @@ def _effects(table, where: str, base_dir: Path | None):
 
 def _number(value, where: str, key: str, unit: str = "") -> float:
     if isinstance(value, bool) or not isinstance(value, (int, float)) or not math.isfinite(float(value)):
-        raise UserError(f"{where}: key '{key}' must be a finite number{f' in {unit}' if unit else ''}, got {value!r}")
+        shown = f" in {unit}" if unit and unit not in ("-", "–") else ""
+        raise UserError(f"{where}: key '{key}' must be a finite number{shown}, got {value!r}")
     return float(value)
 
 
