@@ -173,7 +173,8 @@ def _parse(header: list[str], body: list[tuple[int, list[str]]], src: str, hline
            window_s: float | None = 0, dialect: tuple[str, str] = (",", ".")) -> Measurements:
     """Header and cells as the streaming reader tokenizes them (a ragged row, a cell that is not a number: listed
     here); empty cells, test ids, directions, ranges and each test's rules: the reducer's."""
-    from rollaway.bench.readers import parse_number, ragged_message
+    from rollaway.bench.readers import check_names, parse_number, ragged_message
+    check_names(header, f"{src}, line {hline}")
     problems: list[str] = []
     known = REQUIRED + OPTIONAL
     notes = []

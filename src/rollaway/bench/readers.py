@@ -45,6 +45,14 @@ def sniff_dialect(header_line: str, data_line: str) -> tuple[str, str]:
     return delim, decimal
 
 
+def check_names(header: list[str], where: str) -> None:
+    """UserError for a header of units only ('[s],[degC],[Nm]'): the names are on another line or missing."""
+    if header and all(re.fullmatch(r"\s*[\[(][^\[\]()]*[\])]\s*", h) for h in header):
+        raise UserError(f"{where}: the header has units but no column names ({', '.join(repr(h) for h in header[:4])}"
+                        f"{', ...' if len(header) > 4 else ''}); write each name with its unit on one header line, "
+                        f"e.g. 'time_s [s]', or map the columns with --columns")
+
+
 def read_header(path: Path, kind: str) -> tuple[list[str], int, tuple[str, str]]:
     """The column names of a file, the line they are on (Parquet: the schema, line 0) and the CSV dialect."""
     if kind == "parquet":

@@ -28,7 +28,7 @@ from rollaway.bench.batch import Batch, Text  # noqa: F401  (re-exported: the re
 from rollaway.bench.columns import CANONICAL, TEXT, ColumnMap, Resolved, Spec, _find, unit_label
 from rollaway.bench.manifest import NAMES as MANIFEST_NAMES
 from rollaway.bench.manifest import Manifest, read_manifest
-from rollaway.bench.readers import DIALECT, csv_batches, mdf_batches, parquet_batches, read_header
+from rollaway.bench.readers import DIALECT, check_names, csv_batches, mdf_batches, parquet_batches, read_header
 from rollaway.errors import UserError
 
 SUFFIXES = {".csv": "csv", ".parquet": "parquet", ".pq": "parquet", ".mf4": "mdf", ".mdf": "mdf"}
@@ -86,6 +86,7 @@ def _plan_file(f: Path, colmap: ColumnMap, tests: Manifest | None, per_test: boo
     else:
         header, hline, dialect = read_header(f, kind)
     where = f"{f}, line {hline}" if kind == "csv" else str(f)
+    check_names(header, where)
     cols = {}
     for q in CANONICAL:
         spec = colmap.specs.get(q)

@@ -69,7 +69,8 @@ def load_data(path, columns=(), manifest=None, window_s=None):
         columns = [own]
         notes.append(f"column map {own}")
     colmap = column_map(columns)
-    streaming = bool(colmap) or manifest or is_lab_format(p) or (p.is_file() and p.stat().st_size > SMALL_CSV_BYTES)
+    streaming = bool(colmap) or manifest or is_lab_format(p) or not p.is_file() or \
+        p.stat().st_size > SMALL_CSV_BYTES or _units_in_header(p)
     if streaming:
         from rollaway.bench.sources import read_log
         data = read_log(p, colmap, manifest, window_s, notes)
@@ -79,6 +80,18 @@ def load_data(path, columns=(), manifest=None, window_s=None):
     for note in data.notes:
         typer.echo(f"note: {note}", err=True)
     return data
+
+
+def _units_in_header(path) -> bool:
+    """True when a header cell carries a unit ('torque_Nm [kN·m]'): the column map reads it (the streaming reader)."""
+    from rollaway.bench.columns import split_header
+    from rollaway.bench.readers import read_header
+    from rollaway.errors import UserError
+    try:
+        header = read_header(path, "csv")[0]
+    except UserError:
+        return False                    # the strict loader names what is wrong with it
+    return any(split_header(h)[1] for h in header)
 
 
 def prepare_outputs(**paths) -> None:
