@@ -249,8 +249,8 @@ class Reducer:
         if not stated:
             long = [m for t in self.tests.values() if (m := long_test_message(t.last_where, column, header, t.name,
                                                                               t.last_t))]
-            if long:
-                _raise(long)
+            if long:                        # one line: every test says the same
+                _raise(long[:1])
         durations = np.array([t.last_t for t in self.tests.values()])
         counts = np.array([t.n for t in self.tests.values()])
         rate = float(np.median((counts - 1) / np.maximum(durations, 1e-300)))      # samples per second
@@ -372,13 +372,26 @@ def _check_numbers(b, q: str, x: np.ndarray, problems: list[str], lower: bool = 
     out = (x < lo) | (x > hi)
     if np.any(out):
         i = int(np.flatnonzero(out)[0])
-        if q == "time_s" and (epoch := epoch_message(b.at(i), b.column(q), x[i])):
-            problems.append(epoch)
+        if q == "time_s" and (hint := _time_hint(b, i, x[i], float(np.max(np.abs(x[b.test_id.codes ==
+                                                                                b.test_id.codes[i]]))))):
+            problems.append(hint)
             return
         r = b.columns.get(q)
         read = f" (read as {r.unit})" if r is not None and r.unit else ""
         problems.append(f"{b.at(i)}, column {b.column(q)}: {x[i]:g} {unit} is outside [{lo:g}, {hi:g}]{read}; check "
                         f"the unit (map it with --columns '{q}=<column>[unit]')")
+
+
+def _time_hint(b, i: int, t: float, longest: float) -> str | None:
+    """The message for a time *t* far beyond a bench test: a Unix time stamp, or (no unit stated) ms, µs or ns
+    (judged by the *longest* time of its test in the batch)."""
+    epoch = epoch_message(b.at(i), b.column("time_s"), t)
+    r = b.columns.get("time_s")
+    if epoch or (r is not None and r.unit):
+        return epoch
+    code = int(b.test_id.codes[i])
+    return long_test_message(b.at(i), b.column("time_s"), r.header if r else "time_s",
+                             b.test_id.names[code] if code >= 0 else "?", longest)
 
 
 def _line_of(problem: str) -> int:
