@@ -23,12 +23,15 @@ class Finite(ParamType):
         self.name = inner.name
 
     def convert(self, value, param, ctx):
-        v = self.inner.convert(value, param, ctx)
+        try:
+            v = float(value)
+        except (TypeError, ValueError):
+            v = None                      # not a number: the inner type says so
         if v is not None and not math.isfinite(v):
             from rollaway.errors import UserError
             flag = max(getattr(param, "opts", None) or [param.human_readable_name], key=len)
             raise UserError(f"{flag} {value}: not a finite number; give a number (see --help for its range)")
-        return v
+        return self.inner.convert(value, param, ctx)
 
     def get_metavar(self, *args, **kwargs):
         return self.inner.get_metavar(*args, **kwargs)
