@@ -110,3 +110,47 @@ def test_a_ragged_row_of_a_large_file_is_named_by_its_line(tmp_path, run_cli):
     code, out, err = run_cli("compare", f)
     assert code == 2 and "Traceback" not in err
     assert f"big.csv, line 30001: 7 fields but the header has 6" in err.splitlines()[0]
+
+
+VALID = "\n".join([",".join(HEADER)] + [f"{tid},{d},{f},{t},{200 - t / 20:.2f},{900 + t / 50:.2f}"
+                                        for tid, d, f in (("A", "downhill", 250), ("B", "uphill", 340))
+                                        for t in (0, 300, 600, 900)]) + "\n"
+LINES = VALID.splitlines()
+ODD = {   # name: (file text, "ok" or words of the error's first line)
+    "bom": ("\ufeff" + VALID, "ok"),
+    "bom and semicolons": ("\ufeff" + VALID.replace(",", ";"), "ok"),
+    "crlf": (VALID.replace("\n", "\r\n"), "ok"),
+    "spaces in the header": (VALID.replace(",", ", ", 5), "ok"),
+    "blank line": ("\n".join(LINES[:3] + [""] + LINES[3:]) + "\n", "ok"),
+    "multi-line quoted cell": ("\n".join([LINES[0] + ",note", LINES[1] + ',"a\nb"'] + [x + ",x" for x in LINES[2:]])
+                               + "\n", "ok"),
+    "trailing separators": ("\n".join(x + "," for x in LINES) + "\n", "ok"),
+    "quoted numbers": ("\n".join([LINES[0]] + [",".join(f'"{c}"' for c in x.split(",")) for x in LINES[1:]]) + "\n",
+                       "ok"),
+    "duplicate header": ("\n".join([LINES[0] + ",torque_Nm"] + [x + ",1" for x in LINES[1:]]) + "\n",
+                         "line 1, column 'torque_Nm': duplicate column"),
+    "a whitespace-only line": (VALID + "   \n", "line 10: 1 fields but the header has 6"),
+    "all-empty torque": ("\n".join([LINES[0]] + [x.rsplit(",", 1)[0] + "," for x in LINES[1:]]) + "\n",
+                         "line 2, column 'torque_Nm': empty cell"),
+    "excel sep line": ("sep=,\n" + VALID, "line 1: 'sep=' is a spreadsheet's separator hint"),
+    "unit-only header": ("[-],[-],[N],[s],[degC],[Nm]\n" + "\n".join(LINES[1:]) + "\n", "units but no column names"),
+    "capitalised direction": (VALID.replace("downhill", "Downhill"), "line 2, column 'direction': unknown direction"),
+    "a huge number": (VALID.replace("900.00", "1e400", 1), "line 2, column 'torque_Nm': empty cell or not a finite"),
+}
+
+
+@pytest.mark.parametrize("name", list(ODD))
+def test_odd_csvs_are_read_alike_by_both_readers(tmp_path, name):
+    text, want = ODD[name]
+    f = tmp_path / "odd.csv"
+    f.write_bytes(text.encode("utf-8"))
+    strict, streaming = _outcome(f, 1 << 30), _outcome(f, 0)
+    assert strict[0] == streaming[0]
+    if want == "ok":
+        assert strict[0] == "ok", strict
+        assert list(strict[1][3]) == list(streaming[1][3]) == [0.0, 300.0, 600.0, 900.0] * 2
+    else:
+        with mock.patch.object(identify_common, "SMALL_CSV_BYTES", 0), pytest.raises(UserError) as exc:
+            identify_common.load_data(f, window_s=0)
+        assert strict == streaming or strict[1].split(":")[0] == streaming[1].split(":")[0]
+        assert want in str(exc.value).splitlines()[0], str(exc.value)

@@ -156,12 +156,13 @@ def load_measurements(path: str | Path, window_s: float | None = 0) -> Measureme
 
 
 def csv_rows(lines, path, delimiter: str = ",") -> list[tuple[int, list[str]]]:
-    """(line number, cells) of every non-blank CSV row; a broken quote or an oversized cell is a UserError."""
+    """(line number, cells) of the header (the first row with a cell that is not blank) and of every non-empty
+    row after it (as pyarrow reads them); a broken quote or an oversized cell is a UserError."""
     reader = csv.reader(lines, delimiter=delimiter)
     numbered = []
     try:
         for row in reader:
-            if any(c.strip() for c in row):
+            if any(c.strip() for c in row) if not numbered else row:
                 numbered.append((reader.line_num, row))
     except csv.Error as exc:
         raise UserError(f"{path}, line {reader.line_num}: {exc}; a cell that long or broken quoting is not bench "

@@ -47,6 +47,9 @@ def sniff_dialect(header_line: str, data_line: str) -> tuple[str, str]:
 
 def check_names(header: list[str], where: str) -> None:
     """UserError for a header of units only ('[s],[degC],[Nm]'): the names are on another line or missing."""
+    if header and header[0].strip().lower().startswith("sep=") and not any(h.strip() for h in header[1:]):
+        raise UserError(f"{where}: '{header[0].strip()}' is a spreadsheet's separator hint, not the header; delete "
+                        f"this line so that the header is the first line")
     if header and all(re.fullmatch(r"\s*[\[(][^\[\]()]*[\])]\s*", h) for h in header):
         raise UserError(f"{where}: the header has units but no column names ({', '.join(repr(h) for h in header[:4])}"
                         f"{', ...' if len(header) > 4 else ''}); write each name with its unit on one header line, "
@@ -81,7 +84,8 @@ def csv_batches(fp):
     import pyarrow.csv as pcsv
     types = {r.header: (pa.dictionary(pa.int32(), pa.string()) if q in TEXT else pa.float64())
              for q, r in fp.columns.items()}
-    ro = pcsv.ReadOptions(block_size=BLOCK_BYTES, skip_rows=fp.header_line - 1, use_threads=True)
+    ro = pcsv.ReadOptions(block_size=BLOCK_BYTES, skip_rows=fp.header_line, use_threads=True,
+                          column_names=arrow_names(fp.header))     # the header's names, stripped, as the plan has them
     co = pcsv.ConvertOptions(include_columns=list(types), column_types=types, strings_can_be_null=False,
                              decimal_point=fp.dialect[1])
     first = fp.header_line + 1
@@ -91,8 +95,17 @@ def csv_batches(fp):
         for rb in reader:
             yield rb, first, "line"
             first += rb.num_rows
-    except pa.ArrowInvalid as exc:
+    except pa.ArrowException as exc:
         raise UserError(first_bad_row(fp) or arrow_message(fp, exc, first)) from None
+
+
+def arrow_names(header: list[str]) -> list[str]:
+    """Column names for pyarrow: the stripped header cells, a repeated one made unique ('x', 'x#2')."""
+    out, seen = [], {}
+    for h in header:
+        seen[h] = seen.get(h, 0) + 1
+        out.append(h if seen[h] == 1 else f"{h}#{seen[h]}")
+    return out
 
 
 def first_bad_row(fp) -> str | None:
@@ -105,7 +118,7 @@ def first_bad_row(fp) -> str | None:
         try:
             for row in reader:
                 n = reader.line_num
-                if n <= fp.header_line or not any(c.strip() for c in row):
+                if n <= fp.header_line or not row:      # pyarrow skips empty lines only
                     continue
                 if len(row) != len(fp.header):
                     return ragged_message(fp.path, n, len(row), len(fp.header), delim)
@@ -133,7 +146,7 @@ def parquet_batches(fp):
                                                        columns=[r.header for r in fp.columns.values()]):
             yield rb, first, "row"
             first += rb.num_rows
-    except (pa.ArrowInvalid, pa.ArrowNotImplementedError) as exc:
+    except pa.ArrowException as exc:
         raise UserError(arrow_message(fp, exc, first)) from None
 
 
