@@ -28,7 +28,7 @@ FORMAT_HELP = "text | json (the result, decision first, on stdout)"
 
 DATA_HELP = ("bench log: a CSV or Parquet file, or a folder with one file per test (canonical columns "
              "test_id,direction,hand_force_N,time_s,drum_temp_C,torque_Nm[,ambient_C] or mapped with --columns)")
-SMALL_CSV_BYTES = 1 << 20      # a canonical CSV up to this size is read sample by sample (the strict CSV loader)
+SMALL_CSV_BYTES = 1 << 20      # a canonical CSV up to this size is tokenized by the strict CSV loader (same rules)
 
 
 def columns_option():
@@ -36,14 +36,15 @@ def columns_option():
     return typer.Option([], "--columns", metavar="MAP",
                         help="where the quantities are and in which unit: NAME=COLUMN[unit] (e.g. "
                              "'drum_temp_C=T_drum[degF]', repeatable) or a .toml file with a [columns] table "
-                             "(default: the folder's columns.toml, if any)")
+                             "(default: the folder's columns.toml, if any); a unit that differs from the header's "
+                             "needs a trailing '!' (the header is wrong: 'drum_temp_C=T_drum[degF]!')")
 
 
 def manifest_option():
     import typer
     return typer.Option(None, "--manifest", metavar="FILE",
-                        help="CSV with test_id,direction,hand_force_N per test (a folder's manifest.csv is found "
-                             "by itself)")
+                        help="CSV with test_id,direction,hand_force_N per test, for a folder or a single log with "
+                             "a test_id column (a folder's manifest.csv is found by itself)")
 
 
 def window_option():
