@@ -25,13 +25,15 @@ def test_a_time_in_ms_or_us_without_a_unit_says_which_it_looks_like(tmp_path, fr
     assert code == 0, err
 
 
-def test_a_unit_stated_as_seconds_is_taken_as_stated(tmp_path, frame):
+def test_a_unit_stated_as_seconds_is_taken_as_stated(tmp_path, frame, run_cli):
     f = tmp_path / "log.csv"
     frame.assign(time_s=frame.time_s * 100).to_csv(f, index=False)       # 100 h: longer than any bench test
     with pytest.raises(UserError, match="looks like ms"):
         read_log(f, window_s=0)
     d = read_log(f, column_map(["time_s=time_s[s]"]), window_s=0)
     assert d.time_s.max() == pytest.approx(360000.0)
+    code, _, err = run_cli("compare", f, "--columns", "time_s=time_s[s]")
+    assert code == 0 and "Traceback" not in err, err
 
 
 @pytest.mark.parametrize("offset, words", [(1.7e9, "Unix time stamp in s (2023-"), (1.7e12, "Unix time stamp in ms")])
