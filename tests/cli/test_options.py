@@ -17,6 +17,7 @@ BENCH = ROOT / "tests" / "corpus" / "bench" / "ok-valid.csv"
     (["simulate", SCEN, "--multisample", "4"], "--multisample is used only with --render"),
     (["compare", BENCH, "--effect-file", "x.py"], "--effect-file is used only with --effect"),
     (["synth", "--effect-file", "x.py"], "--effect-file is used only with --effect"),
+    (["sweep", "x.toml", "--simulate", "none", "--workers", "2"], "--workers is used only with --simulate band or all"),
     (["chart", "--uncertainty", "20"], "--uncertainty 20 shades the band of calibrated models"),
     (["diagnose", BENCH, "--noise-torque-Nm", "0"], "--noise-torque-Nm 0: the instrument's noise σ must be > 0"),
 ])
