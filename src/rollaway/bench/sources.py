@@ -71,7 +71,14 @@ def plan(path, colmap: ColumnMap | None = None, manifest: str | None = None) -> 
     else:
         raise UserError(f"measurement file '{p}' does not exist; check the path")
     tests = read_manifest(p, manifest, colmap)
-    return _check_units([_plan_file(f, colmap, tests, per_test) for f in files], p)
+    plans = _check_units([_plan_file(f, colmap, tests, per_test) for f in files], p)
+    if per_test:
+        other = sorted(f.name for f in p.iterdir() if f.is_file() and f.suffix.lower() not in SUFFIXES
+                       and f.name.lower() not in (*MANIFEST_NAMES, "columns.toml") and not f.name.startswith("."))
+        if other:
+            plans[0].notes.append(f"{p}: {len(other)} file(s) not read (not .csv, .parquet or .mf4): "
+                                  f"{', '.join(other[:5])}{', ...' if len(other) > 5 else ''}")
+    return plans
 
 
 def _plan_file(f: Path, colmap: ColumnMap, tests: Manifest | None, per_test: bool) -> FilePlan:
@@ -98,11 +105,9 @@ def _plan_file(f: Path, colmap: ColumnMap, tests: Manifest | None, per_test: boo
     _check_columns(header, cols, colmap, where)
     constants = {}
     if per_test or "test_id" not in cols:
-        constants["test_id"] = f.stem
-        if "test_id" in cols and per_test:
-            cols.pop("test_id")          # the file name is the test's id
+        constants["test_id"] = f.stem    # a folder's file is named after its test (a test_id column must agree)
     for q in ("hand_force_N", "direction"):
-        if q in cols or (tests is not None and "test_id" in cols):
+        if q in cols or (tests is not None and "test_id" in cols and not per_test):
             continue                     # logged, or given per test_id by the manifest (see _batch)
         info = tests.rows.get(str(constants["test_id"])) if tests is not None else None
         if info is None:
@@ -206,10 +211,13 @@ def _number(fp: FilePlan, arr, q: str) -> np.ndarray:
 def _batch(fp: FilePlan, rb, first: int, word: str) -> Batch:
     n = rb.num_rows
     col = {q: rb.column(r.header) for q, r in fp.columns.items()}
-    tid = _text(col["test_id"], n) if "test_id" in col else Text.constant(str(fp.constants["test_id"]), n)
+    by_row = "test_id" in col and "test_id" not in fp.constants
+    if "test_id" in col and not by_row:
+        _same_id(fp, _text(col["test_id"], n), first, word)
+    tid = _text(col["test_id"], n) if by_row else Text.constant(str(fp.constants["test_id"]), n)
     direction = _text(col["direction"], n) if "direction" in col else None
     force = _number(fp, col["hand_force_N"], "hand_force_N") if "hand_force_N" in col else None
-    if (direction is None or force is None) and "test_id" in col:
+    if (direction is None or force is None) and by_row:
         per_dir, per_force = _from_manifest(fp, tid, first, word)
         direction = per_dir if direction is None else direction
         force = per_force if force is None else force
@@ -223,6 +231,16 @@ def _batch(fp: FilePlan, rb, first: int, word: str) -> Batch:
     if fp.manifest is not None:
         fp.manifest.check_agrees(b, tid.names, tid.codes)
     return b
+
+
+def _same_id(fp: FilePlan, tid: Text, first: int, word: str) -> None:
+    """UserError where a folder file's test_id column names another test than the file's name."""
+    for k, name in enumerate(tid.names):
+        hit = np.flatnonzero(tid.codes == k)
+        if hit.size and name != fp.constants["test_id"]:
+            raise UserError(f"{fp.path}, {word} {first + int(hit[0])}, column {fp.columns['test_id'].describe()}: "
+                            f"test '{name}', but a folder's file is the test it is named after "
+                            f"('{fp.constants['test_id']}'); rename the file or correct the column")
 
 
 def _from_manifest(fp: FilePlan, tid: Text, first: int, word: str) -> tuple[Text, np.ndarray]:
@@ -247,11 +265,16 @@ def read_log(path, colmap: ColumnMap | None = None, manifest: str | None = None,
     plans = plan(path, colmap, manifest)
     reducer = Reducer(keep_raw=2 ** 62 if window_s == 0 else None)
     notes = list(notes or [])
+    ignored: dict[tuple, list[str]] = {}
     for fp in plans:
-        ignored = [h for h in fp.header if h not in {r.header for r in fp.columns.values()}]
-        if ignored and len(plans) == 1:
-            notes.append(f"{fp.path}: ignoring column(s) {', '.join(repr(h) for h in ignored[:6])}"
-                         f"{', ...' if len(ignored) > 6 else ''} (not mapped)")
+        cols = tuple(h for h in fp.header if h not in {r.header for r in fp.columns.values()})
+        if cols:
+            ignored.setdefault(cols, []).append(fp.path.name)
+    for cols, names in ignored.items():
+        where = str(plans[0].path) if len(plans) == 1 else f"{Path(path)} ({len(names)} of {len(plans)} files)"
+        notes.append(f"{where}: ignoring column(s) {', '.join(repr(h) for h in cols[:6])}"
+                     f"{', ...' if len(cols) > 6 else ''} (not mapped)")
+    for fp in plans:
         notes += [n for n in fp.notes if n not in notes]
         before = reducer.rows
         for b in batches(fp):
