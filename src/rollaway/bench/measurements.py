@@ -17,8 +17,7 @@ from pathlib import Path
 
 import numpy as np
 
-from rollaway.errors import UserError, suggest
-from rollaway.physics.drum import DIRECTIONS
+from rollaway.errors import UserError
 
 REQUIRED = ("test_id", "direction", "hand_force_N", "time_s", "drum_temp_C", "torque_Nm")
 OPTIONAL = ("ambient_C",)

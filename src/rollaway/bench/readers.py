@@ -133,7 +133,8 @@ def first_bad_row(fp) -> str | None:
 
 
 def ragged_message(path, line: int, fields: int, header: int, delim: str = ",") -> str:
-    return f"{path}, line {line}: {fields} fields but the header has {header}; fix the separators ('{delim}') on this line"
+    return (f"{path}, line {line}: {fields} fields but the header has {header}; fix the separators ('{delim}') "
+            f"on this line")
 
 
 def parquet_batches(fp):

@@ -24,17 +24,16 @@ batch of the log plus a few numbers per second of log.
 from __future__ import annotations
 
 import math
-import re
 from dataclasses import dataclass, field, replace
 
 import numpy as np
 
-from rollaway.errors import UserError, suggest
-from rollaway.bench.measurements import LIMITS, MAX_LISTED, Measurements, _raise
+from rollaway.errors import UserError
+from rollaway.bench.measurements import MAX_LISTED, Measurements, _raise
 from rollaway.bench.noise import Noise, sample_sigma
 from rollaway.bench.rawnoise import dispersion, raw_noise
+from rollaway.bench.cells import cell_problems, line_of
 from rollaway.bench.time_axis import epoch_message, long_test_message
-from rollaway.physics.drum import DIRECTIONS
 
 BIN_S = 1.0                 # statistics are kept per second of log, windows are whole numbers of seconds
 # A window mean differs from the model at the window's mean time by f''·w²/24 (the curvature of the physics:
@@ -113,7 +112,6 @@ class Reducer:
 
     # -- one batch -------------------------------------------------------------------------
     def add(self, b) -> None:
-        problems: list[str] = []
         n = len(b)
         self.rows += n
         if self.time_column is None:
@@ -124,26 +122,10 @@ class Reducer:
         elif self.has_ambient != (b.ambient_C is not None):
             raise UserError(f"{b.where}, column 'ambient_C': some files log the ambient and others do not; give it "
                             f"in every file or in none")
-        values = {"hand_force_N": b.hand_force_N, "time_s": b.time_s, "drum_temp_C": b.drum_temp_C,
-                  "torque_Nm": b.torque_Nm, "ambient_C": b.ambient_C}
-        for q, x in values.items():
-            if x is not None:
-                _check_numbers(b, q, x, problems, lower=q != "time_s")
+        problems = cell_problems(b)
         codes = b.test_id.codes
-        if np.any(codes < 0):
-            i = int(np.flatnonzero(codes < 0)[0])
-            problems.append(f"{b.at(i)}, column {b.column('test_id')}: empty; give every row its test id")
-        dcodes = b.direction.codes
-        for k, name in enumerate(b.direction.names):
-            if name not in DIRECTIONS and np.any(dcodes == k):
-                i = int(np.flatnonzero(dcodes == k)[0])
-                problems.append(f"{b.at(i)}, column {b.column('direction')}: unknown direction {name!r}"
-                                f"{suggest(name.lower(), DIRECTIONS)}; use 'downhill' or 'uphill'")
-        if np.any(dcodes < 0):
-            i = int(np.flatnonzero(dcodes < 0)[0])
-            problems.append(f"{b.at(i)}, column {b.column('direction')}: empty; give 'downhill' or 'uphill'")
         if problems:
-            _raise(sorted(problems, key=_line_of))
+            _raise(sorted(problems, key=line_of))
         order = np.argsort(codes, kind="stable")
         splits = np.flatnonzero(np.diff(codes[order])) + 1
         for rows in np.split(order, splits):
@@ -152,7 +134,7 @@ class Reducer:
             if len(problems) >= MAX_LISTED:
                 break
         if problems:
-            _raise(sorted(problems, key=_line_of))
+            _raise(sorted(problems, key=line_of))
 
     def _segment(self, b, rows: np.ndarray, problems: list[str]) -> None:
         name = b.test_id.names[int(b.test_id.codes[rows[0]])]
@@ -358,46 +340,6 @@ def _accumulate(st: _Test, bins: np.ndarray, values: np.ndarray, col: int) -> No
     out[:, col:col + values.shape[1]] = sums
     st.bins.append(bins[starts])
     st.stats.append(out)
-
-
-def _check_numbers(b, q: str, x: np.ndarray, problems: list[str], lower: bool = True) -> None:
-    lo, hi, unit = LIMITS[q]
-    lo = lo if lower else -hi
-    bad = ~np.isfinite(x)
-    if np.any(bad):
-        i = int(np.flatnonzero(bad)[0])
-        problems.append(f"{b.at(i)}, column {b.column(q)}: empty cell or not a finite number ({int(bad.sum())} such "
-                        f"cell{'s' if bad.sum() > 1 else ''} in these rows); give a measured value or delete the row")
-        return
-    out = (x < lo) | (x > hi)
-    if np.any(out):
-        i = int(np.flatnonzero(out)[0])
-        if q == "time_s" and (hint := _time_hint(b, i, x[i], float(np.max(np.abs(x[b.test_id.codes ==
-                                                                                b.test_id.codes[i]]))))):
-            problems.append(hint)
-            return
-        r = b.columns.get(q)
-        read = f" (read as {r.unit})" if r is not None and r.unit else ""
-        problems.append(f"{b.at(i)}, column {b.column(q)}: {x[i]:g} {unit} is outside [{lo:g}, {hi:g}]{read}; check "
-                        f"the unit (map it with --columns '{q}=<column>[unit]')")
-
-
-def _time_hint(b, i: int, t: float, longest: float) -> str | None:
-    """The message for a time *t* far beyond a bench test: a Unix time stamp, or (no unit stated) ms, µs or ns
-    (judged by the *longest* time of its test in the batch)."""
-    epoch = epoch_message(b.at(i), b.column("time_s"), t)
-    r = b.columns.get("time_s")
-    if epoch or (r is not None and r.unit):
-        return epoch
-    code = int(b.test_id.codes[i])
-    return long_test_message(b.at(i), b.column("time_s"), r.header if r else "time_s",
-                             b.test_id.names[code] if code >= 0 else "?", longest)
-
-
-def _line_of(problem: str) -> int:
-    """The line (or row) a problem names, to list problems in file order whichever check found them."""
-    m = re.search(r", (?:line|row) (\d+)", problem)
-    return int(m.group(1)) if m else 0
 
 
 def reduce_measurements(data: Measurements, window_s: float | None = None) -> Measurements:
