@@ -11,7 +11,7 @@ import re
 
 import numpy as np
 
-from rollaway.bench.measurements import LIMITS
+from rollaway.bench.dataset import LIMITS
 from rollaway.bench.time_axis import epoch_message, long_test_message
 from rollaway.errors import suggest
 from rollaway.physics.drum import DIRECTIONS

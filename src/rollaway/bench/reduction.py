@@ -29,7 +29,7 @@ from dataclasses import dataclass, field, replace
 import numpy as np
 
 from rollaway.errors import UserError
-from rollaway.bench.measurements import MAX_LISTED, Measurements, _raise
+from rollaway.bench.dataset import MAX_LISTED, Measurements, _raise
 from rollaway.bench.noise import Noise, sample_sigma
 from rollaway.bench.rawnoise import dispersion, raw_noise
 from rollaway.bench.cells import cell_problems, line_of

@@ -80,8 +80,24 @@ def model_parts(data: dict, where: str = "model", base_dir: Path | None = None) 
     calibration = _calibration(tables["calibration"], where) if "calibration" in tables else {}
     from rollaway.model.predictive_record import validate
     predictive = validate(tables["predictive"], where, base_dir) if "predictive" in tables else {}
+    for i, alt in enumerate(predictive.get("alternatives", [])):
+        _alternative(Path(alt["file"]), f"{where}, key 'predictive.alternatives[{i}].file'")
     return dict(params=params, effects=tuple(effects), values=values, covariance=covariance, provenance=provenance,
                 name=name, base=base, effect_files=files, calibration=calibration, predictive=predictive)
+
+
+def _alternative(path: Path, named_by: str) -> None:
+    """An alternative model file read and validated now, its errors prefixed by the key that names it; it is one
+    effect set (no alternatives of its own, so that no file is read twice)."""
+    data = read_toml(path, "alternative model file", "diagnose --save-model writes them", referenced_by=named_by)
+    pred = data.get("predictive")
+    if isinstance(pred, dict) and pred.get("alternatives"):
+        raise UserError(f"{named_by}: {path} has alternatives of its own; an alternative is one effect set — "
+                        f"delete its 'predictive.alternatives'")
+    try:
+        model_parts(data, where=str(path), base_dir=path.parent)
+    except UserError as exc:
+        raise UserError(f"{named_by}: {exc}") from None
 
 
 def _calibration(table, where: str) -> dict:

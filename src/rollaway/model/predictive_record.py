@@ -39,8 +39,7 @@ def record(model_error: dict, validity: dict, alternatives=()) -> dict:
 
 
 def validate(table, where: str, base_dir: Path | None = None) -> dict:
-    """Check a ``[predictive]`` table read from a model file (one-line errors naming the key); each alternative
-    file is read and checked now, so that a broken one is named with the key that names it."""
+    """Check a ``[predictive]`` table read from a model file (one-line errors naming the key)."""
     if not isinstance(table, dict):
         raise UserError(f"{where}: [predictive] must be a table")
     for key in table:
@@ -76,8 +75,8 @@ def _real(x) -> bool:
 
 
 def _alternatives(entries, where: str, base_dir: Path | None) -> list[dict]:
-    """The competing effect sets: each ``{ weight, file }`` once, a model file without alternatives of its own."""
-    from rollaway.errors import read_toml
+    """The competing effect sets: each ``{ weight, file }`` once, an existing file other than the model's (its
+    content is checked by :mod:`rollaway.model.model_file`, which reads it)."""
     if not isinstance(entries, list):
         raise UserError(f"{where}: key 'predictive.alternatives' must be a list of {{ weight = 0 < w < 1, file = "
                         f"\"other-model.toml\" }}, got {entries!r}")
@@ -100,26 +99,11 @@ def _alternatives(entries, where: str, base_dir: Path | None) -> list[dict]:
             raise UserError(f"{where}: key '{key}.file' names '{a['file']}' again (also alternatives[{seen[real]}]); "
                             f"list each alternative once with its whole weight")
         seen[real] = i
-        _check_alternative(path, f"{where}, key '{key}.file'", read_toml)
         alts.append({"weight": float(a["weight"]), "file": str(path)})
     if sum(a["weight"] for a in alts) >= 1:
         raise UserError(f"{where}: key 'predictive.alternatives': the weights add up to ≥ 1; the model itself keeps "
                         f"1 − Σ weights")
     return alts
-
-
-def _check_alternative(path: Path, named_by: str, read_toml) -> None:
-    """The alternative model file read and validated as a model (errors prefixed by the key that names it)."""
-    from rollaway.model.model_file import model_parts
-    data = read_toml(path, "alternative model file", "diagnose --save-model writes them", referenced_by=named_by)
-    pred = data.get("predictive")
-    if isinstance(pred, dict) and pred.get("alternatives"):
-        raise UserError(f"{named_by}: {path} has alternatives of its own; an alternative is one effect set — "
-                        f"delete its 'predictive.alternatives'")
-    try:
-        model_parts(data, where=str(path), base_dir=path.parent)
-    except UserError as exc:
-        raise UserError(f"{named_by}: {exc}") from None
 
 
 __all__ = ["KEYS", "record", "validate"]
