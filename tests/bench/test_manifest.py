@@ -106,3 +106,9 @@ def test_the_cli_takes_manifest_for_a_single_file(tmp_path, data, run_cli):
     man.write_text(_manifest(data))
     code, out, err = run_cli("compare", log, "--manifest", man, "--format", "json")
     assert code == 0, err
+
+
+def test_a_european_manifest_with_semicolons_and_decimal_commas(tmp_path, data):
+    man = _manifest(data).replace(",", ";").replace("250.5", "250,5")
+    d = read_log(_folder(tmp_path, data, man), window_s=0)
+    assert np.array_equal(d.hand_force_N, data.hand_force_N)

@@ -10,6 +10,7 @@ or a single log::
 Columns are mapped like the logs' (``--columns``), else taken by their canonical names.  The
 rules, so that nothing is dropped, overridden or reused without a word:
 
+* written like the logs: ``,`` or, as European exports write it, ``;`` with decimal commas;
 * a test is listed once (two rows for one test: an error naming both lines);
 * every row has its test (a folder: a file ``TEST.csv``; a single log: rows with that ``test_id``),
   and every test has its row, unless the log itself logs the direction and the force;
@@ -24,6 +25,7 @@ from pathlib import Path
 import numpy as np
 
 from rollaway.bench.columns import ColumnMap, _find
+from rollaway.bench.readers import sniff_dialect
 from rollaway.errors import UserError, suggest
 from rollaway.physics.drum import DIRECTIONS
 
@@ -129,9 +131,13 @@ def _read_small_csv(path: Path):
         text = path.read_text(encoding="utf-8-sig")
     except UnicodeDecodeError:
         raise UserError(f"{path}, line 1: not a UTF-8 text file; save it as UTF-8 CSV") from None
+    lines = text.splitlines()
+    filled = [x for x in lines if x.strip()]
+    delim, decimal = sniff_dialect(filled[0], filled[1] if len(filled) > 1 else "") if filled else (",", ".")
     try:
-        reader = csv.reader(text.splitlines())
-        numbered = [(reader.line_num, r) for r in reader if any(c.strip() for c in r)]
+        reader = csv.reader(lines, delimiter=delim)
+        numbered = [(reader.line_num, [c.replace(decimal, ".") if decimal != "." else c for c in r])
+                    for r in reader if any(c.strip() for c in r)]
     except csv.Error as exc:
         raise UserError(f"{path}, line {reader.line_num}: {exc}; check the quotes on this line") from None
     if not numbered:
