@@ -277,7 +277,7 @@ class Reducer:
         red = Reduction(self.rows, self.kept, self.kept, None, files, notes=notes)
         return Measurements(np.concatenate(ids).astype(str), np.concatenate(dirs).astype(str), np.concatenate(force),
                             t, temp, torque, amb if self.has_ambient else None,
-                            f"{source} ({red.summary()})", None, notes, reduction=red)
+                            source, None, notes, reduction=red)      # each sample a row: the source is the path
 
     def _reduced(self, source: str, files: int, w: float, notes: list[str]) -> Measurements:
         k = max(int(round(w / BIN_S)), 1)
