@@ -280,8 +280,9 @@ def read_log(path, colmap: ColumnMap | None = None, manifest: str | None = None,
         for b in batches(fp):
             reducer.add(b)
         if reducer.rows == before:
-            raise UserError(f"{fp.path}, line {fp.header_line + 1}: no data rows after the header — a test with "
-                            f"no samples; add its samples or remove the file" +
+            at = f"{fp.path}, line {fp.header_line + 1}" if fp.kind == "csv" else str(fp.path)
+            raise UserError(f"{at}: no data rows after the header — a test with no samples; add its samples or "
+                            f"remove the file" +
                             (" and its manifest row" if fp.manifest and fp.path.stem in fp.manifest.rows else ""))
     m = plans[0].manifest
     if m is not None:
