@@ -92,7 +92,8 @@ def _parse(header: list[str], body: list[tuple[int, list[str]]], src: str, hline
                             f"must contain {','.join(REQUIRED)} (optional ambient_C)")
     ignored = [h for h in header if h not in known]
     if ignored:
-        notes.append(f"{src}: ignoring column(s) {', '.join(repr(h) for h in ignored)} (not part of the format)")
+        notes.append(f"{src}: ignoring column(s) {', '.join(repr(h) for h in ignored[:6])}"
+                     f"{', ...' if len(ignored) > 6 else ''} (not used)")
     if problems:
         _raise(problems)
     if not body:

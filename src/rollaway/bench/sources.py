@@ -273,7 +273,7 @@ def read_log(path, colmap: ColumnMap | None = None, manifest: str | None = None,
     for cols, names in ignored.items():
         where = str(plans[0].path) if len(plans) == 1 else f"{Path(path)} ({len(names)} of {len(plans)} files)"
         notes.append(f"{where}: ignoring column(s) {', '.join(repr(h) for h in cols[:6])}"
-                     f"{', ...' if len(cols) > 6 else ''} (not mapped)")
+                     f"{', ...' if len(cols) > 6 else ''} (not used)")
     for fp in plans:
         notes += [n for n in fp.notes if n not in notes]
         before = reducer.rows
