@@ -23,7 +23,7 @@ def uncertainty_option(help: str = "draw N parameter vectors from the model file
 
 PARAMS: Optional[str] = params_option()
 UNCERTAINTY: Optional[int] = uncertainty_option()
-SEED = typer.Option(None, "--seed", metavar="N", help="random seed of the --uncertainty draws (default 0)")
+SEED = typer.Option(None, "--seed", min=0, metavar="N", help="random seed of the --uncertainty draws (default 0)")
 FORMAT = typer.Option("table", "--format", metavar="FORMAT", help="csv | json | table")
 SAVE_MODEL: Optional[str] = typer.Option(
     None, "--save-model", metavar="FILE",
