@@ -158,3 +158,13 @@ def test_odd_csvs_are_read_alike_by_both_readers(tmp_path, name):
             identify_common.load_data(f, window_s=0)
         assert strict == streaming or strict[1].split(":")[0] == streaming[1].split(":")[0]
         assert want in str(exc.value).splitlines()[0], str(exc.value)
+
+
+def test_a_test_logged_only_before_the_lever_says_so(tmp_path):
+    f = tmp_path / "pre.csv"
+    f.write_text(",".join(HEADER) + "\n" + "".join(f"A,downhill,250,{t},200,900\n" for t in (-3, -2, -1)))
+    for small in (1 << 30, 0):
+        kind, where = _outcome(f, small)
+        assert kind == "error" and where.endswith("pre.csv, line 2, column 'test_id'")
+    with pytest.raises(UserError, match=r"has 0 sample\(s\) from time 0 on \(3 before it, not used\)"):
+        identify_common.load_data(f)

@@ -97,6 +97,7 @@ class _Test:
         self.stats: list[np.ndarray] = []
         self.raw: list[tuple] = []            # raw rows while the log may be small
         self.e4 = np.zeros(2)                 # Σe⁴ (temperature, torque)
+        self.before_zero = 0                  # its rows before time 0 (not kept)
 
 
 class Reducer:
@@ -169,6 +170,7 @@ class Reducer:
         if t[0] < 0:                        # a pre-trigger stretch before the lever was applied: not kept
             st.last_t, st.last_where = float(t[t < 0][-1]), b.at(rows[int(np.sum(t < 0)) - 1])
             self.before_zero += int(np.sum(t < 0))
+            st.before_zero += int(np.sum(t < 0))
             rows, t, force = rows[t >= 0], t[t >= 0], force[t >= 0]
             if not rows.size:
                 return
@@ -225,7 +227,9 @@ class Reducer:
             raise UserError(f"{source}: no data rows after the header; add one row per sample")
         short = [t for t in self.tests.values() if t.n < 3]
         if short:
-            _raise([f"{t.where}, column 'test_id': test '{t.name}' has {t.n} sample(s); give at least 3 per test"
+            _raise([f"{t.where}, column 'test_id': test '{t.name}' has {t.n} sample(s)"
+                    + (f" from time 0 on ({t.before_zero} before it, not used)" if t.before_zero else "")
+                    + "; give at least 3 per test"
                     for t in short])
         column, header, stated = self.time_column or ("'time_s'", "time_s", False)
         if not stated:
