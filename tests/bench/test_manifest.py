@@ -112,3 +112,20 @@ def test_a_european_manifest_with_semicolons_and_decimal_commas(tmp_path, data):
     man = _manifest(data).replace(",", ";").replace("250.5", "250,5")
     d = read_log(_folder(tmp_path, data, man), window_s=0)
     assert np.array_equal(d.hand_force_N, data.hand_force_N)
+
+
+def test_two_manifests_two_files_for_one_test_and_which_manifest_is_used(tmp_path, data):
+    folder = _folder(tmp_path, data, _manifest(data))
+    (folder / "tests.csv").write_text(_manifest(data))
+    assert "the folder has two manifests (manifest.csv, tests.csv)" in _error(read_log, folder)
+    (folder / "tests.csv").unlink()
+    first = data.tests[0]
+    (folder / f"{first}.parquet").write_bytes(b"")
+    assert f"a second file for test '{first}' (also {first}.csv)" in _error(read_log, folder)
+    (folder / f"{first}.parquet").unlink()
+    (folder / "old").mkdir()
+    other = tmp_path / "elsewhere.csv"
+    other.write_text(_manifest(data))
+    notes = read_log(folder, manifest=str(other), window_s=0).notes
+    assert any("not read" in n and "old/" in n for n in notes)
+    assert any(f"--manifest {other} is used, not the folder's manifest.csv" in n for n in notes)

@@ -84,6 +84,9 @@ def read_manifest(path: Path, manifest: str | None, colmap: ColumnMap) -> Manife
         found = [path / n for n in NAMES if path.is_dir() and (path / n).is_file()]
         if not found:
             return None
+        if len(found) > 1:
+            raise UserError(f"{found[1]}: the folder has two manifests ({', '.join(f.name for f in found)}); keep "
+                            f"one, or name the one to use with --manifest")
         m = found[0]
     header, line, rows = _read_small_csv(m)
     cols = {}

@@ -59,6 +59,12 @@ def plan(path, colmap: ColumnMap | None = None, manifest: str | None = None) -> 
                        and f.name.lower() not in MANIFEST_NAMES and not f.name.startswith("."))
         if manifest and Path(manifest).resolve() in {f.resolve() for f in files}:
             files = [f for f in files if f.resolve() != Path(manifest).resolve()]
+        stems: dict[str, Path] = {}
+        for f in files:
+            if f.stem in stems:
+                raise UserError(f"{f}: a second file for test '{f.stem}' (also {stems[f.stem].name}); one file per "
+                                f"test — remove or rename one")
+            stems[f.stem] = f
         if not files:
             raise UserError(f"'{p}' is a folder with no .csv or .parquet file; give a measurement CSV file, or a "
                             f"folder with one CSV/Parquet file per test (named after the test)")
@@ -73,11 +79,15 @@ def plan(path, colmap: ColumnMap | None = None, manifest: str | None = None) -> 
     tests = read_manifest(p, manifest, colmap)
     plans = _check_units([_plan_file(f, colmap, tests, per_test) for f in files], p)
     if per_test:
-        other = sorted(f.name for f in p.iterdir() if f.is_file() and f.suffix.lower() not in SUFFIXES
-                       and f.name.lower() not in (*MANIFEST_NAMES, "columns.toml") and not f.name.startswith("."))
+        other = sorted(f.name + ("/" if f.is_dir() else "") for f in p.iterdir() if not f.name.startswith(".")
+                       and (f.is_dir() or f.suffix.lower() not in SUFFIXES)
+                       and f.name.lower() not in (*MANIFEST_NAMES, "columns.toml"))
         if other:
-            plans[0].notes.append(f"{p}: {len(other)} file(s) not read (not .csv, .parquet or .mf4): "
-                                  f"{', '.join(other[:5])}{', ...' if len(other) > 5 else ''}")
+            plans[0].notes.append(f"{p}: {len(other)} file(s) or folder(s) not read (one .csv, .parquet or .mf4 "
+                                  f"file per test): {', '.join(other[:5])}{', ...' if len(other) > 5 else ''}")
+        own = [p / n for n in MANIFEST_NAMES if (p / n).is_file()]
+        if manifest and own and own[0].resolve() != Path(manifest).resolve():
+            plans[0].notes.append(f"--manifest {manifest} is used, not the folder's {own[0].name}")
     return plans
 
 

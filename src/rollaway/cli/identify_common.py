@@ -69,6 +69,8 @@ def load_data(path, columns=(), manifest=None, window_s=None):
     if not columns and p.is_dir() and own.is_file():          # a folder that carries its own column map
         columns = [own]
         notes.append(f"column map {own}")
+    elif columns and p.is_dir() and own.is_file():
+        notes.append(f"--columns is used, not the folder's {own.name}")
     colmap = column_map(columns)
     streaming = bool(colmap) or manifest or is_lab_format(p) or not p.is_file() or \
         p.stat().st_size > SMALL_CSV_BYTES or _units_in_header(p)
