@@ -13,6 +13,7 @@ from __future__ import annotations
 
 import csv
 import difflib
+import io
 import math
 from pathlib import Path
 
@@ -49,7 +50,7 @@ def load_measurements(path: str | Path, window_s: float | None = 0) -> Measureme
     lines = text.splitlines()
     filled = [x for x in lines if x.strip()]
     delim, decimal = sniff_dialect(filled[0], filled[1] if len(filled) > 1 else "") if filled else (",", ".")
-    numbered = csv_rows(lines, path, delim)
+    numbered = csv_rows(io.StringIO(text, newline=""), path, delim)     # line ends as pyarrow sees them
     if not numbered:
         raise UserError(f"{path}, line 1: the file is empty; expected the header "
                         f"{','.join(REQUIRED)}")
