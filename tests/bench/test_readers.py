@@ -21,7 +21,8 @@ from rollaway.cli import identify_common
 from rollaway.errors import UserError
 
 HEADER = ["test_id", "direction", "hand_force_N", "time_s", "drum_temp_C", "torque_Nm"]
-CELLS = ["", "nan", "NA", "x", "1_0", "inf", "-5", "1e9", "sideways", "uphill", " 7 ", "3.0e3", "-60", "0", "T1"]
+CELLS = ["", "nan", "NA", "x", "1_0", "inf", "-5", "1e9", "sideways", "uphill", " 7 ", "3.0e3", "-60", "0", "T1",
+         '"7"', '"a,b"', "a\x0cb", "1,5", " ", "+0.5", ".5", "0x10"]
 LOCATION = re.compile(r"^(.*?, (?:line|row) \d+(?:, column '[^']*')?)")
 
 
@@ -93,7 +94,8 @@ def test_rows_before_the_lever_are_not_used_by_either_reader_and_it_is_said(tmp_
 
 
 @pytest.mark.parametrize("cell, value", [("", None), ("NA", None), ("1_000", "bad"), ("0x10", "bad"), (" 7 ", 7.0),
-                                         ("1e3", 1000.0), ("-inf", -np.inf), ("2,5", "bad")])
+                                         ("1e3", 1000.0), ("-inf", -np.inf), ("2,5", "bad"), (" ", "bad"),
+                                         (" NA", "bad"), (" nan", None)])
 def test_cells_are_numbers_as_pyarrow_reads_them(cell, value):
     got = parse_number(cell)
     if value is None:

@@ -24,14 +24,15 @@ DIALECT = (",", ".")            # CSV delimiter and decimal mark
 # cells pyarrow reads as missing in a numeric column (its default null_values): NaN for every reader
 NULLS = frozenset(("", "#N/A", "#N/A N/A", "#NA", "-1.#IND", "-1.#QNAN", "-NaN", "-nan", "1.#IND", "1.#QNAN", "N/A",
                    "NA", "NULL", "NaN", "n/a", "nan", "null"))
-NUMBER = re.compile(r"[+-]?(\d+\.?\d*|\.\d+)([eE][+-]?\d+)?|[+-]?(inf|infinity)", re.IGNORECASE)
+NUMBER = re.compile(r"[+-]?(\d+\.?\d*|\.\d+)([eE][+-]?\d+)?|[+-]?(inf|infinity|nan)", re.IGNORECASE)
 
 
 def parse_number(cell: str, decimal: str = ".") -> float | None:
-    """A numeric cell as pyarrow reads it: a missing-value mark → NaN, a number → float, anything else → None."""
-    c = cell.strip()
-    if c in NULLS:
+    """A numeric cell as pyarrow reads it: a missing-value mark (the cell exactly) → NaN, a number (spaces around
+    it allowed) → float, anything else (a blank cell of spaces too) → None."""
+    if cell in NULLS:
         return float("nan")
+    c = cell.strip()
     c = c.replace(decimal, ".") if decimal != "." else c
     return float(c) if NUMBER.fullmatch(c) else None
 
