@@ -115,7 +115,7 @@ def test_a_ragged_row_of_a_large_file_is_named_by_its_line(tmp_path, run_cli):
     assert f.stat().st_size > identify_common.SMALL_CSV_BYTES
     code, out, err = run_cli("compare", f)
     assert code == 2 and "Traceback" not in err
-    assert f"big.csv, line 30001: 7 fields but the header has 6" in err.splitlines()[0]
+    assert "big.csv, line 30001: 7 fields but the header has 6" in err.splitlines()[0]
 
 
 VALID = "\n".join([",".join(HEADER)] + [f"{tid},{d},{f},{t},{200 - t / 20:.2f},{900 + t / 50:.2f}"
