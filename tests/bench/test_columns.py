@@ -80,3 +80,54 @@ def test_unknown_unit_in_header_names_the_column():
     with pytest.raises(UserError) as e:
         ColumnMap().resolve(["torque_Nm [flurbs]"], "torque_Nm", "x.csv")
     assert "x.csv, column 'torque_Nm [flurbs]'" in str(e.value) and "unknown unit 'flurbs'" in str(e.value)
+
+
+def test_a_map_unit_disagreeing_with_the_header_is_an_error_unless_stated():
+    header = ["T_drum [degC]", "Time"]
+    with pytest.raises(UserError) as exc:
+        column_map(["drum_temp_C=T_drum[degF]"]).resolve(header, "drum_temp_C", "f.csv, line 1")
+    msg = str(exc.value)
+    assert "f.csv, line 1, column 'T_drum [degC]'" in msg and "header says °C" in msg and "says °F" in msg
+    assert "drum_temp_C=T_drum[degF]!" in msg
+    r = column_map(["drum_temp_C=T_drum[degF]!"]).resolve(header, "drum_temp_C", "f.csv, line 1")
+    assert r.scale * 212 + r.offset == pytest.approx(100.0) and "override" in r.note and "°F" in r.note
+    same = column_map(["drum_temp_C=T_drum[°C]"]).resolve(header, "drum_temp_C", "f.csv")   # one unit, two spellings
+    assert (same.scale, same.offset, same.note) == (1.0, 0.0, "")
+
+
+def test_toml_override_units_and_its_mistakes(tmp_path):
+    f = tmp_path / "lab.toml"
+    f.write_text('[columns]\ndrum_temp_C = { column = "T_drum", unit = "degF", override_units = true }\n'
+                 'torque_Nm = "Torque [lbf*ft]!"\n', encoding="utf-8")
+    m = column_map([f])
+    assert m.specs["drum_temp_C"].override and m.specs["torque_Nm"].override
+    assert m.resolve(["Torque [Nm]"], "torque_Nm", "x").note
+    with pytest.raises(UserError, match="override_units must be true or false"):
+        parse_table({"drum_temp_C": {"column": "T", "override_units": "yes"}}, "lab.toml")
+    with pytest.raises(UserError, match="no unit is given"):
+        column_map(["drum_temp_C=T_drum!"])
+
+
+def test_a_stated_override_is_noted_on_stderr_and_in_the_json(tmp_path, run_cli):
+    import json
+    from rollaway.identify.synth import synth
+    f = tmp_path / "log.csv"
+    frame = synth([], seed=2).to_frame().rename(columns={"drum_temp_C": "T_drum [degC]"})
+    frame.to_csv(f, index=False)
+    code, out, err = run_cli("compare", f, "--columns", "drum_temp_C=T_drum[degC]", "--format", "json")
+    assert code == 0 and "override" not in err
+    frame["T_drum [degC]"] = frame["T_drum [degC]"] * 1.8 + 32       # the values are °F, the header is wrong
+    frame.to_csv(f, index=False)
+    code, out, err = run_cli("compare", f, "--columns", "drum_temp_C=T_drum[degF]!", "--format", "json")
+    assert code == 0, err
+    note = "drum_temp_C: column 'T_drum [degC]' read in °F"
+    assert f"note: {note}" in err and any(note in n for n in json.loads(out)["data"]["notes"])
+
+
+def test_one_column_mapped_to_two_quantities_is_an_error(tmp_path, run_cli):
+    from rollaway.identify.synth import synth
+    f = tmp_path / "log.csv"
+    synth([], seed=2).to_csv(f)
+    code, _, err = run_cli("compare", f, "--columns", "torque_Nm=drum_temp_C")
+    assert code == 2 and "column 'drum_temp_C': read as both drum_temp_C and torque_Nm" in err
+    assert "torque_Nm mapped to it by --columns" in err and len(err.strip().splitlines()) == 1

@@ -70,7 +70,7 @@ def test_malformed_files_name_file_line_and_column(tmp_path, case, run_cli):
 
 
 def test_every_problem_is_listed(tmp_path):
-    text = GOOD.replace("1080", "x").replace("B,uphill,300,300", "B,sideways,300,300")
+    text = GOOD.replace("1080", "nan").replace("B,uphill,300,300", "B,sideways,300,300")
     with pytest.raises(UserError) as exc:
         load_measurements(_write(tmp_path, text))
     msg = str(exc.value)

@@ -65,7 +65,8 @@ def test_sparse_log_is_not_reduced():
     d = synth([], seed=1, dt_s=10.0)
     out = reduce_measurements(d)
     assert not out.reduction.reduced and len(out) == len(d) and out.count is None
-    assert out.rows_info() == {"rows_read": len(d), "rows_kept": len(d), "rows": len(d), "window_s": None}
+    assert out.rows_info() == {"rows_read": len(d), "rows_kept": len(d), "rows": len(d), "window_s": None,
+                               "notes": []}
 
 
 def _batches(data, cuts):

@@ -184,3 +184,21 @@ def test_rows_before_the_lever_is_applied_are_read_but_not_kept(tmp_path, dense)
     assert info["rows_read"] == len(dense) + 200 and info["rows_kept"] == len(dense)
     assert any("200 rows logged before time 0" in n for n in d.notes)
     assert "kept 14,404" in d.reduction.summary() and "read 14,604" in d.reduction.summary()
+
+
+def test_a_folder_says_what_it_does_not_read_and_checks_a_test_id_column(tmp_path, run_cli):
+    d = synth([], seed=6, dt_s=600.0, duration_s=3600.0, hand_forces_N=(250.0,))
+    folder = tmp_path / "bench"
+    folder.mkdir()
+    frame = d.to_frame()
+    for t, rows in frame.groupby("test_id", sort=False):
+        rows.assign(operator="bob").to_csv(folder / f"{t}.csv", index=False)
+    (folder / "photo.jpg").write_bytes(b"\xff\xd8")
+    code, out, err = run_cli("compare", folder, "--format", "json")
+    assert code == 0, err
+    notes = json.loads(out)["data"]["notes"]
+    assert any("ignoring column(s) 'operator'" in n for n in notes) and any("photo.jpg" in n for n in notes)
+    first = d.tests[0]
+    frame[frame.test_id == first].assign(test_id="other").to_csv(folder / f"{first}.csv", index=False)
+    with pytest.raises(UserError, match=rf"{first}.csv, line 2, column 'test_id': test 'other', but a folder's file"):
+        read_log(folder)

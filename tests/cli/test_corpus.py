@@ -33,8 +33,8 @@ def command(case: dict, tmp_path: Path, plugins: Path) -> list:
         return ["params", path]
     if kind == "sweep":
         return ["sweep", path, "--out", tmp_path / "out", "--simulate", "none", "--no-plots", "--quiet"]
-    if kind == "bench":
-        return ["compare", path]
+    if kind == "bench":                 # a file or a folder, with the case's own flags
+        return ["compare", path, *(a.replace("{corpus}", str(CORPUS)) for a in case.get("args", ()))]
     if kind == "plugin":
         return ["compare", CORPUS / "plugin" / "data.csv", "--effect-file", plugins / path.name,
                 "--effect", case["effect"]]

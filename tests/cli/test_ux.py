@@ -51,6 +51,10 @@ def test_simulate_text_ends_with_verdict(run_cli):
     (["simulate", SCEN / "tyre-skid.toml", "--size", "big"], ["--size", "640x480"]),
     (["simulate", SCEN / "tyre-skid.toml", "--fps", "0"], ["--fps"]),
     (["simulate", SCEN / "tyre-skid.toml", "--format", "xml"], ["xml"]),
+    (["hold", "--grade-pct", "20", "--hand-force-N", "300", "--uncertainty", "10", "--seed", "-1"], ["--seed"]),
+    (["synth", "--seed", "-5"], ["--seed"]),
+    (["synth", "--t0-C", "5000"], ["--t0-C 5000", "[-60, 1000]"]),
+    (["synth", "--dt-s", "1e-9"], ["--dt-s", "rows"]),
 ])
 def test_wrong_input_names_the_kind_and_the_command(run_cli, args, words):
     code, out, err = run_cli(*args)

@@ -14,7 +14,9 @@ if (ROOT / "manifest.json").exists():      # only ever a corpus folder
         shutil.rmtree(ROOT / sub, ignore_errors=True)
 cases = []
 
-def add(kind, name, content, expect, needles=(), effect=None, xfail=None, note=""):
+def add(kind, name, content, expect, needles=(), effect=None, xfail=None, note="", args=()):
+    """One case: a file (text or bytes), a folder of files ({name: content}) or None (a folder given where a
+    file is expected); *args*: more command-line arguments ('{corpus}' stands for the corpus folder)."""
     path = ROOT / kind / name
     path.parent.mkdir(parents=True, exist_ok=True)
     if isinstance(content, str):
@@ -22,9 +24,14 @@ def add(kind, name, content, expect, needles=(), effect=None, xfail=None, note="
     if content is None:
         path.mkdir(parents=True, exist_ok=True)
         (path / "README").write_text("a folder given where a file is expected\n")
+    elif isinstance(content, dict):
+        path.mkdir(parents=True, exist_ok=True)
+        for n, text in content.items():
+            (path / n).write_bytes(text.encode("utf-8") if isinstance(text, str) else text)
     else:
         path.write_bytes(content)
     c = {"file": f"{kind}/{name}", "expect": expect, "needles": list(needles), "note": note}
+    if args: c["args"] = list(args)
     if effect: c["effect"] = effect
     if xfail: c["xfail"] = xfail
     cases.append(c)
@@ -140,6 +147,29 @@ add(P, "occupant-mass-ton.toml", 'extends = "paper"\noccupant_mass_kg = 1000\n',
 add(P, "u6-slope-negative.toml", 'extends = "paper"\nu6_slope_m_per_N = -1e-7\n', "error", ["'u6_slope_m_per_N'"])
 add(P, "syntax.toml", 'extends = "paper"\nmu_drum = \n', "error", ["line 2"])
 add(P, "not-utf8.toml", b'extends = "paper"\n# \xff\xfe\n', "error", ["UTF-8"])
+COV3 = '[covariance]\nnames = ["mu_drum", "heat_transfer_W_m2K", "u6_offset_m"]\nmatrix = '
+add(P, "ok-covariance-zero-rows.toml", 'extends = "paper"\n' + COV3 + '[[0.0, 0.0, 0.0], [0.0, 0.0, 0.0], [0.0, 0.0, 1e-10]]\n',
+    "accept", note="zero variances: parameters held fixed")
+add(P, "covariance-negative-variance.toml", 'extends = "paper"\n' + COV3 + '[[-1.0, 0, 0], [0, 1.0, 0], [0, 0, 1.0]]\n',
+    "error", ["'covariance.matrix[0][0]'", "negative variance"])
+add(P, "covariance-fixed-but-correlated.toml", 'extends = "paper"\n' + COV3 +
+    '[[0.0, 1e-30, 0.0], [1e-30, 0.0, 0.0], [0.0, 0.0, 4.0]]\n', "error", ["'covariance.matrix[0][1]'", "held fixed"])
+add(P, "covariance-inconsistent.toml", 'extends = "paper"\n' + COV3 +
+    '[[1.0, 0.9, -0.9], [0.9, 1.0, 0.9], [-0.9, 0.9, 1.0]]\n', "error", ["'covariance.matrix'", "semi-definite"])
+add(P, "covariance-nan.toml", 'extends = "paper"\n' + COV3 + '[[1.0, 0, 0], [0, nan, 0], [0, 0, 1.0]]\n', "error",
+    ["'covariance.matrix[1][1]'"])
+PRED = '[predictive]\nmodel_error_rel_sd = 0.01\nmodel_error_dof = 5\n'
+add(P, "predictive-dof-nan.toml", 'extends = "paper"\n' + PRED.replace("= 5", "= nan"), "error",
+    ["'predictive.model_error_dof'"])
+add(P, "predictive-alternative-missing.toml", 'extends = "paper"\n' + PRED +
+    'alternatives = [{ weight = 0.3, file = "gone.toml" }]\n', "error", ["'predictive.alternatives[0].file'"])
+add(P, "predictive-alternative-itself.toml", 'extends = "paper"\n' + PRED +
+    'alternatives = [{ weight = 0.3, file = "predictive-alternative-itself.toml" }]\n', "error", ["itself"])
+add(P, "effect-unknown.toml", 'extends = "paper"\n[effects.lining_crep]\nrelaxed_fraction = 0.1\n', "error",
+    ["lining_crep", "lining_creep"])
+add(P, "effect-value-nan.toml", 'extends = "paper"\n[effects.lining_creep]\nrelaxed_fraction = nan\n', "error",
+    ["'effects.lining_creep.relaxed_fraction'"])
+add(P, "effects-not-a-table.toml", 'extends = "paper"\neffects = []\n', "error", ["'effects'"])
 
 W = "sweep"
 (ROOT / W).mkdir(parents=True, exist_ok=True)
@@ -231,6 +261,67 @@ add(B, "direction-unknown.csv", csv([cell(1, 1, "sideways")] + lines[2:]), "erro
 add(B, "time-decreases.csv", csv([lines[1], lines[3], lines[2]] + lines[4:]), "error", ["'time_s'"])
 add(B, "starts-late.csv", csv(lines[2:]), "error", ["'time_s'"])
 add(B, "empty-test-id.csv", csv([cell(1, 0, "")] + lines[2:]), "error", ["line 2", "'test_id'"])
+rows = [l.split(",") for l in lines[1:]]
+def joined(rs, header=hdr):
+    return csv([",".join(r) for r in rs], header)
+def with_time(f):
+    return [r[:3] + [f(float(r[3]))] + r[4:] for r in rows]
+add(B, "time-in-ms-no-unit.csv", joined(with_time(lambda t: f"{t * 1000:g}")), "error",
+    ["'time_s'", "looks like ms", "time_s=time_s[ms]"], note="a DAQ export in ms with no unit in the header")
+add(B, "ok-time-in-ms-with-unit.csv", joined(with_time(lambda t: f"{t * 1000:g}"), hdr.replace("time_s", "time_s [ms]")),
+    "accept")
+add(B, "time-epoch.csv", joined(with_time(lambda t: f"{t + 1.7e9:.1f}")), "error", ["'time_s'", "Unix time stamp"])
+pre = []
+for r in rows:
+    if r[3] == "0":
+        pre.append(r[:3] + ["-30"] + r[4:])
+    pre.append(r)
+add(B, "ok-rows-before-the-lever.csv", joined(pre), "accept", note="rows before time 0: not used, said on stderr")
+add(B, "duplicate-timestamp.csv", joined(rows[:2] + [rows[1]] + rows[2:]), "error", ["line 4", "duplicate time"])
+add(B, "ambient-all-empty.csv", joined([r[:6] + [""] for r in rows]), "error", ["line 2", "'ambient_C'"])
+add(B, "ok-semicolons-decimal-commas.csv", "\n".join([hdr.replace(",", ";")] + [";".join(c.replace(".", ",") for c in r)
+                                                                            for r in rows]) + "\n", "accept")
+add(B, "ok-tab-separated.csv", "\n".join([hdr.replace(",", "\t")] + ["\t".join(r) for r in rows]) + "\n", "accept")
+add(B, "ok-spaces-after-commas.csv", csv([", ".join(r) for r in rows], ", ".join(hdr.split(","))), "accept")
+add(B, "ok-interleaved-tests.csv", joined([r for pair in zip(rows[:5], rows[5:10]) for r in pair] + rows[10:]),
+    "accept", note="rows of two tests alternate")
+add(B, "decimal-comma-with-comma-separator.csv", joined([rows[0][:4] + ["205,464"] + rows[0][5:]] + rows[1:]),
+    "error", ["line 2", "fields"])
+add(B, "unit-only-header.csv", joined(rows, "[-],[-],[N],[s],[degC],[Nm],[degC]"), "error", ["line 1", "units but no column names"])
+add(B, "na-in-torque.csv", joined([rows[0][:5] + ["NA"] + rows[0][6:]] + rows[1:]), "error", ["line 2", "'torque_Nm'"])
+add(B, "column-for-two-quantities.csv", VALID, "error", ["'drum_temp_C'", "read as both"],
+    args=["--columns", "torque_Nm=drum_temp_C"])
+degc = hdr.replace("drum_temp_C", "T_drum [degC]")
+add(B, "unit-map-disagrees.csv", joined(rows, degc), "error", ["'T_drum [degC]'", "°C", "°F", "!"],
+    args=["--columns", "drum_temp_C=T_drum[degF]"])
+add(B, "ok-unit-map-overrides.csv", joined(rows, degc), "accept", args=["--columns", "drum_temp_C=T_drum[degF]!"],
+    note="an override stated with '!': noted on stderr and in the JSON")
+tests = {}
+for r in rows:
+    tests.setdefault(r[0], []).append(r)
+man = "test_id,direction,hand_force_N\n" + "".join(f"{t},{rs[0][1]},{rs[0][2]}\n" for t, rs in tests.items())
+per = {f"{t}.csv": "time_s,drum_temp_C,torque_Nm,ambient_C\n" + "".join(",".join(r[3:]) + "\n" for r in rs)
+       for t, rs in tests.items()}
+first = next(iter(tests))
+add(B, "ok-folder", {"manifest.csv": man, **per}, "accept")
+add(B, "folder-manifest-lists-a-test-twice", {"manifest.csv": man + f"{first},downhill,300\n", **per}, "error",
+    ["manifest.csv, line 6", f"'{first}'", "twice", "line 2"])
+add(B, "folder-manifest-row-without-file", {"manifest.csv": man, **{k: v for k, v in list(per.items())[1:]}}, "error",
+    ["manifest.csv, line 2", f"'{first}'", "no data"])
+add(B, "folder-file-without-row", {"manifest.csv": "".join(man.splitlines(True)[:-1]), **per}, "error",
+    ["no manifest entry"])
+add(B, "folder-empty-test-file", {"manifest.csv": man, **per, f"{first}.csv": "time_s,drum_temp_C,torque_Nm,ambient_C\n"},
+    "error", [f"{first}.csv, line 2", "no data rows"])
+add(B, "folder-direction-disagrees", {"manifest.csv": man, **{k: "direction," + v.splitlines()[0] + "\n" + "".join(
+    ("uphill," if k == f"{first}.csv" else f"{tests[k[:-4]][0][1]},") + l + "\n" for l in v.splitlines()[1:])
+    for k, v in per.items()}}, "error", [f"{first}.csv, line 2", "uphill here but downhill", "manifest.csv, line 2"])
+(ROOT / B / "aux").mkdir(parents=True, exist_ok=True)
+(ROOT / B / "aux" / "manifest-of-single.csv").write_text(man)
+add(B, "ok-single-log-with-manifest.csv", joined([[r[0]] + r[3:] for r in rows],
+    "test_id,time_s,drum_temp_C,torque_Nm,ambient_C"), "accept", args=["--manifest", "{corpus}/bench/aux/manifest-of-single.csv"])
+add(B, "single-log-force-disagrees-with-manifest.csv", joined([r[:2] + ["260" if r[0] == first else r[2]] + r[3:]
+    for r in rows]), "error", ["line 2", "260 N here but 250 N", "manifest-of-single.csv, line 2"],
+    args=["--manifest", "{corpus}/bench/aux/manifest-of-single.csv"])
 
 E = "plugin"
 (ROOT / E).mkdir(parents=True, exist_ok=True)

@@ -78,8 +78,10 @@ def test_every_command_accepts_a_model_file(run_cli, model_file, tmp_path):
                     f'duration_s = 60\nparams = "{model_file.name}"\n', encoding="utf-8")
     code, out, _ = run_cli("simulate", scen, "--format", "json")
     assert code == 0 and json.loads(out)["outcome"] == "held"
-    code, out, _ = run_cli("check", scen, "--params", model_file, "--format", "json")
+    code, out, _ = run_cli("check", scen, "--format", "json")          # the scenario names the model file
     assert code == 0
+    code, _, err = run_cli("check", scen, "--params", model_file)       # --params is the presets' model only
+    assert code == 2 and "--params sets the drum model of the regulation presets" in err
     code, _, _ = run_cli("paper", "--params", model_file, "--out", tmp_path / "figs")
     assert code in (0, None) and len(list((tmp_path / "figs").glob("*.png"))) >= 6
 

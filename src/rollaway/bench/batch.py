@@ -36,12 +36,16 @@ class Batch:
     torque_Nm: np.ndarray
     ambient_C: np.ndarray | None
     columns: dict[str, Resolved]  # quantity → the file's column (for messages)
+    lines: np.ndarray | None = None  # each row's line number where rows are not consecutive lines (None: first + i)
 
     def __len__(self) -> int:
         return len(self.time_s)
 
+    def line(self, i: int) -> int:
+        return int(self.lines[i]) if self.lines is not None else self.first + int(i)
+
     def at(self, i: int) -> str:
-        return f"{self.where}, {self.word} {self.first + int(i)}"
+        return f"{self.where}, {self.word} {self.line(i)}"
 
     def column(self, quantity: str) -> str:
         r = self.columns.get(quantity)

@@ -10,7 +10,10 @@ logs in its own units; a map says where each canonical quantity is::
     time_s = "Time [ms]"
 
 or on the command line ``--columns 'drum_temp_C=T_drum[degF]'`` (repeatable).  A header such
-as ``T_drum [°F]`` matches the column ``T_drum`` with its unit.  Units are parsed with pint
+as ``T_drum [°F]`` matches the column ``T_drum`` with its unit.  A map's unit that disagrees with the
+header's is an error (one of them is wrong) unless the map says it overrides the header: a trailing
+``!`` (``--columns 'drum_temp_C=T_drum[degF]!'``, ``drum_temp_C = "T_drum [degF]!"``) or
+``override_units = true`` in the table form; the reader then notes what it did.  Units are parsed with pint
 (N·m, lbf·ft, kN·m; °C, °F, K; s, ms, min, h; N, lbf, kgf; and anything else pint knows with
 the right dimension) and turned into one affine conversion ``SI = a·x + b`` per column, applied
 to whole arrays.
@@ -102,6 +105,7 @@ class Spec:
 
     column: str
     unit: str | None = None
+    override: bool = False      # the unit deliberately overrides the header's ('...[degF]!', override_units = true)
 
 
 @dataclass(frozen=True)
@@ -113,6 +117,7 @@ class Resolved:
     unit: str | None
     scale: float = 1.0
     offset: float = 0.0
+    note: str = ""              # a stated choice taken (the map's unit over the header's), for stderr and JSON
 
     def describe(self) -> str:
         return f"'{self.header}'" + ("" if self.header == self.quantity else f" ({self.quantity})")
@@ -143,11 +148,12 @@ class ColumnMap:
                             f"such column{suggest(bare, pool)}; the header is {', '.join(repr(h) for h in header[:8])}"
                             f"{', ...' if len(header) > 8 else ''} — fix the name in {self.origin}")
         cell, header_unit = found
-        # the map's unit (explicit, or in brackets after the mapped name) wins over the header's
+        # the map's unit (explicit, or in brackets after the mapped name); the header's where the map has none
         spec_unit = (spec.unit or split_header(spec.column)[1]) if spec else None
         unit = spec_unit or header_unit
         if quantity in TEXT:
             return Resolved(quantity, cell, None)
+        note = self._disagreement(where, quantity, cell, spec, spec_unit, header_unit)
         try:
             a, b = conversion(unit, quantity)
         except ValueError as exc:
@@ -158,7 +164,28 @@ class ColumnMap:
                        f"--columns '{quantity}={split_header(cell)[0]}[{good}]'")
             raise UserError(f"{where}, column '{cell}': {exc} for {quantity} (from {src}); give one of "
                             f"{QUANTITIES[quantity][2]}, e.g. {example}") from None
-        return Resolved(quantity, cell, unit, a, b)
+        return Resolved(quantity, cell, unit, a, b, note)
+
+    def _disagreement(self, where, quantity, cell, spec, spec_unit, header_unit) -> str:
+        """'' when the map's and the header's units agree (or one is absent); the note of a stated override;
+        UserError for an unstated disagreement."""
+        if not (spec_unit and header_unit):
+            return ""
+        try:
+            same = conversion(spec_unit, quantity) == conversion(header_unit, quantity)
+        except ValueError:
+            return ""                         # an unknown unit: the caller's error names it
+        if same:
+            return ""
+        said, head = unit_label(spec_unit, quantity), unit_label(header_unit, quantity)
+        if spec.override:
+            return (f"{quantity}: column '{cell}' read in {said} as {self.origin} says, not in {head} as its header "
+                    f"says (override stated with '!')")
+        bare = split_header(cell)[0]
+        raise UserError(f"{where}, column '{cell}': the header says {head} but {self.origin} says {said} for "
+                        f"{quantity}; drop the unit from the map to use the header's, or, if the header is wrong, "
+                        f"say so with a trailing '!': --columns '{quantity}={bare}[{spec_unit}]!' (in a .toml map: "
+                        f"override_units = true)")
 
 
 def _find(header: list[str], name: str) -> tuple[str, str | None] | None:
@@ -185,9 +212,14 @@ def parse_inline(text: str, origin: str = "--columns") -> dict[str, Spec]:
                         f"file with a [columns] table")
     key, col = (s.strip() for s in text.split("=", 1))
     _check_key(key, origin)
+    override = col.endswith("!")
+    col = col[:-1].strip() if override else col
     if not col:
         raise UserError(f"{origin} {text!r}: no column after '='; e.g. '{key}=My column'")
-    return {key: Spec(col)}
+    if override and not (split_header(col)[1]):
+        raise UserError(f"{origin} {text!r}: a trailing '!' overrides the header's unit with the map's, but no unit "
+                        f"is given; e.g. '{key}={col}[degF]!'")
+    return {key: Spec(col, None, override)}
 
 
 def parse_table(table, origin: str) -> dict[str, Spec]:
@@ -199,16 +231,20 @@ def parse_table(table, origin: str) -> dict[str, Spec]:
     for key, val in table.items():
         _check_key(key, origin)
         if isinstance(val, str) and val.strip():
-            out[key] = Spec(val.strip())
+            out[key] = parse_inline(f"{key}={val.strip()}", f"{origin}, [columns] {key}:")[key]
         elif isinstance(val, dict) and isinstance(val.get("column"), str) and val["column"].strip():
-            extra = set(val) - {"column", "unit"}
+            extra = set(val) - {"column", "unit", "override_units"}
             if extra:
                 raise UserError(f"{origin}, [columns] {key}: unknown key(s) {', '.join(sorted(extra))}; use "
-                                f"column and unit")
+                                f"column, unit and override_units")
             unit = val.get("unit")
             if unit is not None and (not isinstance(unit, str) or not unit.strip()):
                 raise UserError(f"{origin}, [columns] {key}: unit must be a text such as \"degF\"")
-            out[key] = Spec(val["column"].strip(), unit.strip() if unit else None)
+            override = val.get("override_units", False)
+            if not isinstance(override, bool) or (override and not unit):
+                raise UserError(f"{origin}, [columns] {key}: override_units must be true or false, and true needs a "
+                                f"unit (the one that overrides the header's)")
+            out[key] = Spec(val["column"].strip(), unit.strip() if unit else None, override)
         else:
             raise UserError(f"{origin}, [columns] {key}: give the column name as text, e.g. {key} = \"Torque [Nm]\", "
                             f"or {{ column = \"...\", unit = \"...\" }}")

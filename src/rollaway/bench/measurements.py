@@ -1,131 +1,41 @@
-"""Bench measurements: load and validate the bench CSV format.
+"""Bench measurements: load and validate the bench CSV format (the strict loader of small files).
 
 One row per sample, columns ``test_id,direction,hand_force_N,time_s,drum_temp_C,torque_Nm``
 and optionally ``ambient_C`` (a logged ambient, one reading per sample).  Each test starts at
 ``time_s = 0`` (lever applied); its drum-temperature reading there is a noisy measurement of
 its T_0 (``test_initial_temp_C``; the fits estimate T_0 with the other parameters); ``torque_Nm``
 is per drum.  Every problem is reported
-with file, line and column; nothing is guessed.
+with file, line and column; nothing is guessed.  The file is tokenized here; the rules of each test
+are :class:`rollaway.bench.reduction.Reducer`'s, as for the streaming reader.  :class:`Measurements`
+itself lives in :mod:`rollaway.bench.dataset` (imported from here as before).
 """
 from __future__ import annotations
 
 import csv
 import difflib
+import io
 import math
-from dataclasses import dataclass, field
 from pathlib import Path
 
 import numpy as np
 
-from rollaway.errors import UserError, suggest
-from rollaway.physics.drum import DIRECTIONS
+from rollaway.errors import UserError
 
-REQUIRED = ("test_id", "direction", "hand_force_N", "time_s", "drum_temp_C", "torque_Nm")
-OPTIONAL = ("ambient_C",)
-NUMERIC = ("hand_force_N", "time_s", "drum_temp_C", "torque_Nm", "ambient_C")
-LIMITS = {"hand_force_N": (0.0, 5000.0, "N"), "time_s": (0.0, 1e7, "s"), "drum_temp_C": (-60.0, 1000.0, "°C"),
-          "torque_Nm": (-1e5, 1e5, "N·m"), "ambient_C": (-60.0, 80.0, "°C")}
-MAX_LISTED = 20
-
-
-@dataclass
-class Measurements:
-    """Validated samples, flattened over tests (arrays of equal length, file order)."""
-
-    test_id: np.ndarray
-    direction: np.ndarray
-    hand_force_N: np.ndarray
-    time_s: np.ndarray
-    drum_temp_C: np.ndarray
-    torque_Nm: np.ndarray
-    ambient_C: np.ndarray | None = None
-    source: str = "<data>"
-    line: np.ndarray | None = None
-    notes: list[str] = field(default_factory=list)
-    torque_sigma_Nm: np.ndarray | None = None   # per-sample noise level (set by diagnose; weights the fits)
-    temp_sigma_C: np.ndarray | None = None      # per-sample drum-temperature noise level (idem)
-    count: np.ndarray | None = None             # raw samples averaged into each row (None: one each)
-    reduction: object | None = None             # rows read/kept/reduced, raw-rate noise (identify.reduction)
-
-    def __post_init__(self):
-        self.tests = list(dict.fromkeys(self.test_id.tolist()))
-        index = {t: i for i, t in enumerate(self.tests)}
-        self.test_index = np.array([index[t] for t in self.test_id], dtype=int)
-        self.sign = np.where(self.direction == "downhill", 1.0, -1.0)
-        t0 = np.empty(len(self.tests))
-        for i in range(len(self.tests)):
-            rows = np.flatnonzero(self.test_index == i)
-            t0[i] = self.drum_temp_C[rows[np.argmin(self.time_s[rows])]]
-        self.test_initial_temp_C = t0
-        self.initial_temp_C = t0[self.test_index]
-
-    def __len__(self) -> int:
-        return len(self.time_s)
-
-    @property
-    def n_tests(self) -> int:
-        return len(self.tests)
-
-    def test_info(self) -> list[dict]:
-        """One dict per test: id, direction, hand force, T_0, number of samples, duration."""
-        out = []
-        for i, t in enumerate(self.tests):
-            rows = self.test_index == i
-            first = np.flatnonzero(rows)[0]
-            out.append({"test_id": t, "direction": str(self.direction[first]),
-                        "hand_force_N": float(self.hand_force_N[first]),
-                        "initial_temp_C": float(self.test_initial_temp_C[i]),
-                        "samples": int(rows.sum() if self.count is None else self.count[rows].sum()),
-                        "duration_s": float(self.time_s[rows].max())})
-        return out
-
-    def rows_info(self) -> dict:
-        """Rows read from the log, kept, and seen by the fits (after a reduction), for reports and JSON."""
-        red = self.reduction
-        if red is None:
-            return {"rows_read": len(self), "rows_kept": len(self), "rows": len(self), "window_s": None}
-        return {"rows_read": red.rows_read, "rows_kept": red.rows_kept, "rows": len(self), "window_s": red.window_s}
-
-    def subset(self, mask) -> "Measurements":
-        """Rows where *mask* is true (whole tests keep their T_0)."""
-        m = np.asarray(mask, bool)
-        return Measurements(self.test_id[m], self.direction[m], self.hand_force_N[m], self.time_s[m],
-                            self.drum_temp_C[m], self.torque_Nm[m],
-                            None if self.ambient_C is None else self.ambient_C[m], self.source,
-                            None if self.line is None else self.line[m], [],
-                            None if self.torque_sigma_Nm is None else self.torque_sigma_Nm[m],
-                            None if self.temp_sigma_C is None else self.temp_sigma_C[m],
-                            None if self.count is None else self.count[m], self.reduction)
-
-    def to_frame(self):
-        import pandas as pd
-        cols = {"test_id": self.test_id, "direction": self.direction, "hand_force_N": self.hand_force_N,
-                "time_s": self.time_s, "drum_temp_C": self.drum_temp_C, "torque_Nm": self.torque_Nm}
-        if self.ambient_C is not None:
-            cols["ambient_C"] = self.ambient_C
-        return pd.DataFrame(cols)
-
-    def to_csv(self, path: str | Path) -> None:
-        self.to_frame().to_csv(path, index=False, float_format="%.6g")
-
-    @classmethod
-    def from_frame(cls, frame, source: str = "<DataFrame>") -> "Measurements":
-        """Validate a pandas DataFrame with the CSV's columns (rows numbered as CSV lines 2, 3, …)."""
-        header = [str(c) for c in frame.columns]
-        rows = [["" if _isnan(v) else str(v) for v in r] for r in frame.itertuples(index=False)]
-        return _parse(header, [(i + 2, r) for i, r in enumerate(rows)], source)
-
-    def _repr_html_(self) -> str:  # notebooks
-        return (f"<b>Measurements</b> {self.source}: {len(self)} samples, {self.n_tests} tests"
-                + self.to_frame().head(8)._repr_html_())
+from rollaway.bench.dataset import (LIMITS, MAX_LISTED, NUMERIC, OPTIONAL, REQUIRED,  # noqa: F401 (re-exported)
+                                    Measurements, _raise)
 
 
 def _isnan(v) -> bool:
     return isinstance(v, float) and math.isnan(v)
 
 
-def load_measurements(path: str | Path) -> Measurements:
-    """Read and validate a measurement CSV; raise UserError listing every problem."""
+def load_measurements(path: str | Path, window_s: float | None = 0) -> Measurements:
+    """Read and validate a measurement CSV; raise UserError listing every problem.
+
+    The file is tokenized here (Python's csv module: exact line numbers, every bad cell listed); the rules
+    for each test (one force and direction, time order, start at 0, rows before the lever, the time unit)
+    are the streaming reader's (:class:`rollaway.bench.reduction.Reducer`), so a log gives the same rows or
+    the same error whichever reader takes it.  *window_s*: 0 every sample a row, None automatic."""
     path = Path(path)
     if not path.is_file():
         raise UserError(f"measurement file '{path}' does not exist; check the path")
@@ -136,23 +46,39 @@ def load_measurements(path: str | Path) -> Measurements:
     if "\x00" in text:
         line = text[:text.index("\x00")].count("\n") + 1
         raise UserError(f"{path}, line {line}: a NUL byte; this is not a text CSV file — export the data again")
-    reader = csv.reader(text.splitlines())
-    numbered = []
-    try:
-        for row in reader:
-            numbered.append((reader.line_num, row))
-    except csv.Error as exc:
-        raise UserError(f"{path}, line {reader.line_num}: {exc}; a cell that long or broken quoting is not bench "
-                        f"data — check the quotes on this line") from None
-    numbered = [(n, r) for n, r in numbered if any(c.strip() for c in r)]
+    from rollaway.bench.readers import sniff_dialect
+    lines = text.splitlines()
+    filled = [x for x in lines if x.strip()]
+    delim, decimal = sniff_dialect(filled[0], filled[1] if len(filled) > 1 else "") if filled else (",", ".")
+    numbered = csv_rows(io.StringIO(text, newline=""), path, delim)     # line ends as pyarrow sees them
     if not numbered:
         raise UserError(f"{path}, line 1: the file is empty; expected the header "
                         f"{','.join(REQUIRED)}")
     (hline, header), body = numbered[0], numbered[1:]
-    return _parse([h.strip() for h in header], body, str(path), hline)
+    return _parse([h.strip() for h in header], body, str(path), hline, window_s, (delim, decimal))
 
 
-def _parse(header: list[str], body: list[tuple[int, list[str]]], src: str, hline: int = 1) -> Measurements:
+def csv_rows(lines, path, delimiter: str = ",") -> list[tuple[int, list[str]]]:
+    """(line number, cells) of the header (the first row with a cell that is not blank) and of every non-empty
+    row after it (as pyarrow reads them); a broken quote or an oversized cell is a UserError."""
+    reader = csv.reader(lines, delimiter=delimiter)
+    numbered = []
+    try:
+        for row in reader:
+            if any(c.strip() for c in row) if not numbered else row:
+                numbered.append((reader.line_num, row))
+    except csv.Error as exc:
+        raise UserError(f"{path}, line {reader.line_num}: {exc}; a cell that long or broken quoting is not bench "
+                        f"data — check the quotes on this line") from None
+    return numbered
+
+
+def _parse(header: list[str], body: list[tuple[int, list[str]]], src: str, hline: int = 1,
+           window_s: float | None = 0, dialect: tuple[str, str] = (",", ".")) -> Measurements:
+    """Header and cells as the streaming reader tokenizes them (a ragged row, a cell that is not a number: listed
+    here); empty cells, test ids, directions, ranges and each test's rules: the reducer's."""
+    from rollaway.bench.readers import check_names, parse_number, ragged_message
+    check_names(header, f"{src}, line {hline}")
     problems: list[str] = []
     known = REQUIRED + OPTIONAL
     notes = []
@@ -167,99 +93,51 @@ def _parse(header: list[str], body: list[tuple[int, list[str]]], src: str, hline
                             f"must contain {','.join(REQUIRED)} (optional ambient_C)")
     ignored = [h for h in header if h not in known]
     if ignored:
-        notes.append(f"{src}: ignoring column(s) {', '.join(repr(h) for h in ignored)} (not part of the format)")
+        notes.append(f"{src}: ignoring column(s) {', '.join(repr(h) for h in ignored[:6])}"
+                     f"{', ...' if len(ignored) > 6 else ''} (not used)")
     if problems:
         _raise(problems)
     if not body:
         _raise([f"{src}, line {hline + 1}: no data rows after the header; add one row per sample"])
     col = {name: header.index(name) for name in known if name in header}
     values: dict[str, list] = {name: [] for name in col}
-    lines = []
-    for lineno, row in body:
+    for lineno, row in body:            # in file order, as the streaming reader finds them
         if len(row) != len(header):
-            problems.append(f"{src}, line {lineno}: {len(row)} fields but the header has {len(header)}; "
-                            f"fix the commas on this line")
+            problems.append(ragged_message(src, lineno, len(row), len(header), dialect[0]))
             continue
-        lines.append(lineno)
         for name, j in col.items():
-            cell = row[j].strip()
-            if name == "test_id":
-                if not cell:
-                    problems.append(f"{src}, line {lineno}, column 'test_id': empty; give every row its test id")
-                values[name].append(cell)
-            elif name == "direction":
-                if cell not in DIRECTIONS:
-                    problems.append(f"{src}, line {lineno}, column 'direction': unknown direction {cell!r}"
-                                    f"{suggest(cell.lower(), DIRECTIONS)}; use 'downhill' or 'uphill'")
-                values[name].append(cell)
-            else:
-                values[name].append(_number(cell, src, lineno, name, problems))
+            if name in ("test_id", "direction"):
+                values[name].append(row[j].strip())
+                continue
+            v = parse_number(row[j], dialect[1])
+            if v is None:
+                problems.append(f"{src}, line {lineno}, column '{name}': {row[j].strip()!r} is not a number; give a "
+                                f"value in {LIMITS[name][2]}")
+            values[name].append(math.nan if v is None else v)
     if problems:
         _raise(problems)
-    arr = {k: np.array(v, dtype=object if k in ("test_id", "direction") else float) for k, v in values.items()}
-    line = np.array(lines)
-    _check_tests(arr, line, src, problems)
-    if problems:
-        _raise(problems)
-    return Measurements(arr["test_id"].astype(str), arr["direction"].astype(str), arr["hand_force_N"],
-                        arr["time_s"], arr["drum_temp_C"], arr["torque_Nm"], arr.get("ambient_C"), src, line,
-                        notes)
+    return _through_reducer(values, np.array([n for n, _ in body]), src, hline, window_s, notes)
 
 
-def _number(cell: str, src: str, lineno: int, name: str, problems: list[str]) -> float:
-    lo, hi, unit = LIMITS[name]
-    try:
-        v = float(cell)
-    except ValueError:
-        problems.append(f"{src}, line {lineno}, column '{name}': {cell!r} is not a number; give a value in {unit}"
-                        if cell else f"{src}, line {lineno}, column '{name}': empty cell; give a value in {unit}")
-        return math.nan
-    if not math.isfinite(v):
-        problems.append(f"{src}, line {lineno}, column '{name}': {cell!r} is not a finite number; give a measured "
-                        f"value in {unit} or delete the row")
-    elif not lo <= v <= hi:
-        problems.append(f"{src}, line {lineno}, column '{name}': {v:g} {unit} is outside [{lo:g}, {hi:g}]; "
-                        f"check the unit")
-    return v
+def _through_reducer(values: dict, lines: np.ndarray, src: str, hline: int, window_s, notes) -> Measurements:
+    """The per-test rules and the rows of :class:`rollaway.bench.reduction.Reducer` (one set of rules)."""
+    from rollaway.bench.batch import Batch, Text
+    from rollaway.bench.reduction import Reducer
+
+    def text(cells):
+        names = [c for c in dict.fromkeys(cells) if c]
+        index = {c: i for i, c in enumerate(names)}
+        return Text(np.array([index.get(c, -1) for c in cells], np.int64), names)
+
+    arr = {k: np.array(v, float) for k, v in values.items() if k not in ("test_id", "direction")}
+    red = Reducer(keep_raw=2 ** 62 if window_s == 0 else None)
+    red.add(Batch(src, hline + 1, "line", text(values["test_id"]), text(values["direction"]), arr["hand_force_N"],
+                  arr["time_s"], arr["drum_temp_C"], arr["torque_Nm"], arr.get("ambient_C"), {}, lines))
+    return red.finish(src, 1, window_s, notes)
 
 
-def _check_tests(arr: dict, line: np.ndarray, src: str, problems: list[str]) -> None:
-    tid = arr["test_id"]
-    for t in dict.fromkeys(tid.tolist()):
-        rows = np.flatnonzero(tid == t)
-        for name in ("hand_force_N", "direction"):
-            first = arr[name][rows[0]]
-            for r in rows[1:]:
-                if arr[name][r] != first:
-                    what = "hand forces" if name == "hand_force_N" else "directions"
-                    problems.append(f"{src}, line {line[r]}, column '{name}': test '{t}' has two {what} "
-                                    f"({first} on line {line[rows[0]]}, {arr[name][r]} here); one test is one "
-                                    f"lever application — give it a new test_id")
-                    break
-        times = arr["time_s"][rows]
-        for k in range(1, len(rows)):
-            if times[k] == times[k - 1]:
-                problems.append(f"{src}, line {line[rows[k]]}, column 'time_s': duplicate time {times[k]:g} s in "
-                                f"test '{t}' (also on line {line[rows[k - 1]]}); remove one of the rows")
-            elif times[k] < times[k - 1]:
-                problems.append(f"{src}, line {line[rows[k]]}, column 'time_s': time decreases in test '{t}' "
-                                f"({times[k - 1]:g} s on line {line[rows[k - 1]]}, then {times[k]:g} s); sort the "
-                                f"rows of each test by time")
-        if times[0] != 0.0:
-            problems.append(f"{src}, line {line[rows[0]]}, column 'time_s': test '{t}' starts at {times[0]:g} s; "
-                            f"each test must start at time_s = 0 (lever applied), which defines its T_0")
-        if len(rows) < 3:
-            problems.append(f"{src}, line {line[rows[0]]}, column 'test_id': test '{t}' has {len(rows)} sample(s); "
-                            f"give at least 3 per test")
-
-
-def _raise(problems: list[str]) -> None:
-    shown = problems[:MAX_LISTED]
-    more = len(problems) - len(shown)
-    msg = shown[0]
-    if len(problems) > 1:
-        msg += f" (and {len(problems) - 1} more problem{'s' if len(problems) > 2 else ''})"
-        msg += "".join(f"\n  {p}" for p in shown[1:])
-        if more:
-            msg += f"\n  … {more} more"
-    raise UserError(msg)
+def from_frame(frame, source: str = "<DataFrame>", window_s: float | None = 0) -> Measurements:
+    """Validate a pandas DataFrame with the CSV's columns (rows numbered as CSV lines 2, 3, …)."""
+    header = [str(c) for c in frame.columns]
+    rows = [["" if _isnan(v) else str(v) for v in r] for r in frame.itertuples(index=False)]
+    return _parse(header, [(i + 2, r) for i, r in enumerate(rows)], source, 1, window_s)

@@ -87,7 +87,8 @@ def pseudo_residuals(time_s, values, test_index, time_constant_s: float, degree:
     t = np.asarray(time_s, float)[w]
     x = np.exp(-t / time_constant_s)
     span = np.ptp(x, axis=1, keepdims=True)
-    use_t = (span[:, 0] <= 1e-9 * np.max(np.abs(x), axis=1))    # cooling coordinate degenerate: use time
+    gap = np.min(np.diff(np.sort(x, axis=1), axis=1), axis=1)   # two samples at one x (exp underflows to 0)
+    use_t = (span[:, 0] <= 1e-9 * np.max(np.abs(x), axis=1)) | (gap <= 1e-9 * span[:, 0])  # degenerate: use time
     x = np.where(use_t[:, None], t, x)
     x = (x - x.mean(axis=1, keepdims=True)) / np.maximum(np.ptp(x, axis=1, keepdims=True), 1e-300)
     # the (p+1)-th divided difference over p+2 points annihilates every polynomial of degree ≤ p:

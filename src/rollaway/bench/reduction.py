@@ -28,11 +28,12 @@ from dataclasses import dataclass, field, replace
 
 import numpy as np
 
-from rollaway.errors import UserError, suggest
-from rollaway.bench.measurements import LIMITS, MAX_LISTED, Measurements, _raise
+from rollaway.errors import UserError
+from rollaway.bench.dataset import MAX_LISTED, Measurements, _raise
 from rollaway.bench.noise import Noise, sample_sigma
 from rollaway.bench.rawnoise import dispersion, raw_noise
-from rollaway.physics.drum import DIRECTIONS
+from rollaway.bench.cells import cell_problems, line_of
+from rollaway.bench.time_axis import epoch_message, long_test_message
 
 BIN_S = 1.0                 # statistics are kept per second of log, windows are whole numbers of seconds
 # A window mean differs from the model at the window's mean time by f''·w²/24 (the curvature of the physics:
@@ -96,6 +97,7 @@ class _Test:
         self.stats: list[np.ndarray] = []
         self.raw: list[tuple] = []            # raw rows while the log may be small
         self.e4 = np.zeros(2)                 # Σe⁴ (temperature, torque)
+        self.before_zero = 0                  # its rows before time 0 (not kept)
 
 
 class Reducer:
@@ -107,37 +109,24 @@ class Reducer:
         self.before_zero = 0                  # rows logged before the lever was applied (t < 0): not kept
         self.keep_raw = KEEP_RAW_ROWS if keep_raw is None else keep_raw
         self.has_ambient: bool | None = None
+        self.time_column: tuple[str, str, bool] | None = None   # (as described, header cell, unit stated)
 
     # -- one batch -------------------------------------------------------------------------
     def add(self, b) -> None:
-        problems: list[str] = []
         n = len(b)
         self.rows += n
+        if self.time_column is None:
+            r = b.columns.get("time_s")
+            self.time_column = (b.column("time_s"), r.header if r else "time_s", bool(r and r.unit))
         if self.has_ambient is None:
             self.has_ambient = b.ambient_C is not None
         elif self.has_ambient != (b.ambient_C is not None):
             raise UserError(f"{b.where}, column 'ambient_C': some files log the ambient and others do not; give it "
                             f"in every file or in none")
-        values = {"hand_force_N": b.hand_force_N, "time_s": b.time_s, "drum_temp_C": b.drum_temp_C,
-                  "torque_Nm": b.torque_Nm, "ambient_C": b.ambient_C}
-        for q, x in values.items():
-            if x is not None:
-                _check_numbers(b, q, x, problems, lower=q != "time_s")
+        problems = cell_problems(b)
         codes = b.test_id.codes
-        if np.any(codes < 0):
-            i = int(np.flatnonzero(codes < 0)[0])
-            problems.append(f"{b.at(i)}, column {b.column('test_id')}: empty; give every row its test id")
-        dcodes = b.direction.codes
-        for k, name in enumerate(b.direction.names):
-            if name not in DIRECTIONS and np.any(dcodes == k):
-                i = int(np.flatnonzero(dcodes == k)[0])
-                problems.append(f"{b.at(i)}, column {b.column('direction')}: unknown direction {name!r}"
-                                f"{suggest(name.lower(), DIRECTIONS)}; use 'downhill' or 'uphill'")
-        if np.any(dcodes < 0):
-            i = int(np.flatnonzero(dcodes < 0)[0])
-            problems.append(f"{b.at(i)}, column {b.column('direction')}: empty; give 'downhill' or 'uphill'")
         if problems:
-            _raise(problems)
+            _raise(sorted(problems, key=line_of))
         order = np.argsort(codes, kind="stable")
         splits = np.flatnonzero(np.diff(codes[order])) + 1
         for rows in np.split(order, splits):
@@ -146,7 +135,7 @@ class Reducer:
             if len(problems) >= MAX_LISTED:
                 break
         if problems:
-            _raise(problems)
+            _raise(sorted(problems, key=line_of))
 
     def _segment(self, b, rows: np.ndarray, problems: list[str]) -> None:
         name = b.test_id.names[int(b.test_id.codes[rows[0]])]
@@ -181,10 +170,15 @@ class Reducer:
         if t[0] < 0:                        # a pre-trigger stretch before the lever was applied: not kept
             st.last_t, st.last_where = float(t[t < 0][-1]), b.at(rows[int(np.sum(t < 0)) - 1])
             self.before_zero += int(np.sum(t < 0))
+            st.before_zero += int(np.sum(t < 0))
             rows, t, force = rows[t >= 0], t[t >= 0], force[t >= 0]
             if not rows.size:
                 return
         if st.n == 0 and t[0] != 0.0:
+            epoch = epoch_message(b.at(rows[0]), b.column("time_s"), t[0])
+            if epoch:
+                problems.append(epoch)
+                return
             problems.append(f"{b.at(rows[0])}, column {b.column('time_s')}: test '{name}' starts at {t[0]:g} s; each "
                             f"test must start at time 0 (lever applied), which defines its T_0 — shift its times")
             return
@@ -233,8 +227,16 @@ class Reducer:
             raise UserError(f"{source}: no data rows after the header; add one row per sample")
         short = [t for t in self.tests.values() if t.n < 3]
         if short:
-            _raise([f"{t.where}, column 'test_id': test '{t.name}' has {t.n} sample(s); give at least 3 per test"
+            _raise([f"{t.where}, column 'test_id': test '{t.name}' has {t.n} sample(s)"
+                    + (f" from time 0 on ({t.before_zero} before it, not used)" if t.before_zero else "")
+                    + "; give at least 3 per test"
                     for t in short])
+        column, header, stated = self.time_column or ("'time_s'", "time_s", False)
+        if not stated:
+            long = [m for t in self.tests.values() if (m := long_test_message(t.last_where, column, header, t.name,
+                                                                              t.last_t))]
+            if long:                        # one line: every test says the same
+                _raise(long[:1])
         durations = np.array([t.last_t for t in self.tests.values()])
         counts = np.array([t.n for t in self.tests.values()])
         rate = float(np.median((counts - 1) / np.maximum(durations, 1e-300)))      # samples per second
@@ -242,7 +244,8 @@ class Reducer:
             w = auto_window(rate, float(durations.max()))
             reduce = rate * w >= MIN_PER_WINDOW
         else:
-            if window_s < 0 or (window_s > 0 and abs(window_s / BIN_S - round(window_s / BIN_S)) > 1e-9):
+            whole = math.isfinite(window_s) and abs(window_s / BIN_S - round(window_s / BIN_S)) <= 1e-9
+            if not math.isfinite(window_s) or window_s < 0 or (window_s > 0 and not whole):
                 raise UserError(f"--window-s {window_s:g}: give a whole number of seconds ≥ 1 (0: fit every sample)")
             w, reduce = float(window_s), window_s > 0
             per_window = rate * w
@@ -278,7 +281,7 @@ class Reducer:
         red = Reduction(self.rows, self.kept, self.kept, None, files, notes=notes)
         return Measurements(np.concatenate(ids).astype(str), np.concatenate(dirs).astype(str), np.concatenate(force),
                             t, temp, torque, amb if self.has_ambient else None,
-                            f"{source} ({red.summary()})", None, notes, reduction=red)
+                            source, None, notes, reduction=red)      # each sample a row: the source is the path
 
     def _reduced(self, source: str, files: int, w: float, notes: list[str]) -> Measurements:
         k = max(int(round(w / BIN_S)), 1)
@@ -341,24 +344,6 @@ def _accumulate(st: _Test, bins: np.ndarray, values: np.ndarray, col: int) -> No
     out[:, col:col + values.shape[1]] = sums
     st.bins.append(bins[starts])
     st.stats.append(out)
-
-
-def _check_numbers(b, q: str, x: np.ndarray, problems: list[str], lower: bool = True) -> None:
-    lo, hi, unit = LIMITS[q]
-    lo = lo if lower else -hi
-    bad = ~np.isfinite(x)
-    if np.any(bad):
-        i = int(np.flatnonzero(bad)[0])
-        problems.append(f"{b.at(i)}, column {b.column(q)}: empty or not a finite number ({int(bad.sum())} such "
-                        f"cell{'s' if bad.sum() > 1 else ''} in these rows); give a measured value or delete the row")
-        return
-    out = (x < lo) | (x > hi)
-    if np.any(out):
-        i = int(np.flatnonzero(out)[0])
-        r = b.columns.get(q)
-        read = f" (read as {r.unit})" if r is not None and r.unit else ""
-        problems.append(f"{b.at(i)}, column {b.column(q)}: {x[i]:g} {unit} is outside [{lo:g}, {hi:g}]{read}; check "
-                        f"the unit (map it with --columns '{q}=<column>[unit]')")
 
 
 def reduce_measurements(data: Measurements, window_s: float | None = None) -> Measurements:

@@ -35,7 +35,10 @@ def load_command(name: str):
     """The click command of *name*, built from its module ``rollaway.cli.<name>``."""
     sub = typer.Typer(add_completion=False, pretty_exceptions_enable=False, rich_markup_mode=None)
     importlib.import_module(f"rollaway.cli.{name.replace('-', '_')}").register(sub)   # export-fmu: export_fmu
-    return typer.main.get_command(sub)
+    from rollaway.cli.finite import refuse_non_finite
+    cmd = typer.main.get_command(sub)
+    refuse_non_finite(cmd)
+    return cmd
 
 
 class LazyGroup(TyperGroup):

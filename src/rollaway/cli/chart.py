@@ -28,6 +28,10 @@ def chart(
     if not (0 < duration_s <= 7 * 86400):
         raise UserError(f"--duration-s {duration_s:g} must be in (0, 604800] seconds, e.g. 3600")
     models = {Path(p).stem if p.endswith(".toml") else p: load_model(p) for p in params}
+    if uncertainty and not any(m.covariance is not None or m.predictive for m in models.values()):
+        raise UserError(f"--uncertainty {uncertainty} shades the band of calibrated models, and none of --params "
+                        f"{', '.join(params)} is one (no [covariance]); give a model file saved by 'rollaway diagnose "
+                        f"--save-model', or leave --uncertainty out")
     path = design_chart(models, out, occupants=occupants, duration_s=duration_s, initial_temp_C=t0_C,
                         uncertainty=uncertainty)
     typer.echo(f"wrote {path}")

@@ -41,6 +41,14 @@ def check(
 
     check_choice(fmt, FORMATS, "format")
     if not analytic:
+        opt.only_with("--analytic (check's analytic mode; the MuJoCo gate simulates the model as it is)",
+                      **{"--uncertainty": uncertainty})
+    if params is not None and targets and not any(t in PRESETS or t == "all" for t in targets):
+        from rollaway.errors import UserError
+        raise UserError(f"--params sets the drum model of the regulation presets, and no preset is given: each "
+                        f"scenario file names its own model (its 'params' key) — set it there, add a preset "
+                        f"({', '.join(PRESETS)}), or use 'rollaway simulate FILE --params {params}'")
+    if not analytic:
         from rollaway.cli.inputs import expect_scenario
         for n in targets or ():
             if n not in PRESETS and n != "all":

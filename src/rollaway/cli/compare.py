@@ -31,6 +31,8 @@ def compare(
     from rollaway.cli.output import REPORT_FORMATS
     from rollaway.errors import check_choice
     check_choice(fmt, REPORT_FORMATS, "--format")
+    if not effect:
+        opt.only_with("--effect NAME (compare adds only the effects it is given)", **{"--effect-file": effect_file})
     prepare_outputs(report=report, json_out=json_out)
     load_plugins(effect_file)
     effects = parse_effects(effect)

@@ -44,10 +44,15 @@ def diagnose(
     from rollaway.cli.output import REPORT_FORMATS
     from rollaway.errors import check_choice
     check_choice(fmt, REPORT_FORMATS, "--format")
+    for flag, sigma in (("--noise-torque-Nm", noise_torque_Nm), ("--noise-temp-C", noise_temp_C)):
+        if sigma is not None and sigma <= 0:
+            from rollaway.errors import UserError
+            raise UserError(f"{flag} {sigma:g}: the instrument's noise σ must be > 0; leave {flag} out to estimate "
+                            f"it from the data")
     prepare_outputs(report=report, json_out=json_out, save_model=save_model)
     load_plugins(effect_file)
-    diag = run(load_data(data, columns, manifest, window_s), params=params, noise_torque_Nm=noise_torque_Nm or None,
-               noise_temp_C=noise_temp_C or None, free=free or None, fix=fix)
+    diag = run(load_data(data, columns, manifest, window_s), params=params, noise_torque_Nm=noise_torque_Nm,
+               noise_temp_C=noise_temp_C, free=free or None, fix=fix)
     write_outputs(diag, report=report, json_out=json_out, fmt=fmt)
     if check_calibration:
         from rollaway.uncertainty.calibration_check import check_calibration as check, words

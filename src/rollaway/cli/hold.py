@@ -31,7 +31,7 @@ def hold(
     tyre_mu: Optional[float] = typer.Option(None, "--tyre-mu", help="tyre–road friction μ_r (default: the set's)"),
     params: Optional[str] = opt.PARAMS,
     uncertainty: Optional[int] = opt.UNCERTAINTY,
-    seed: int = opt.SEED,
+    seed: Optional[int] = opt.SEED,
     fmt: str = opt.FORMAT,
 ) -> int:
     """Analytic hold check of one parked car: margin over time, slip time, tyre margin, least hand force.
@@ -43,6 +43,8 @@ def hold(
     self-locking shoe (outside the model).
     """
     check_choice(fmt, FORMATS, "format")
+    if uncertainty is None:
+        opt.only_with("--uncertainty N (draws from the model file's covariance)", **{"--seed": seed})
     check_choice(direction, DIRECTIONS, "direction")
     validate_grade(grade_pct)
     validate_hand_force(hand_force_N)
@@ -54,7 +56,7 @@ def hold(
     t = time_grid_s(duration_s, dt_s, "--duration-s")
     from rollaway.api import hold as run
     v = run(model, hand_force_N=hand_force_N, grade_pct=grade_pct, direction=direction, occupants=occupants,
-            duration_s=duration_s, initial_drum_temp_C=None, uncertainty=uncertainty, seed=seed)
+            duration_s=duration_s, initial_drum_temp_C=None, uncertainty=uncertainty, seed=0 if seed is None else seed)
     risk = v.risk
     if v.outcome == "self_locking":
         if fmt == "json":

@@ -28,7 +28,7 @@ FORMAT_HELP = "text | json (the result, decision first, on stdout)"
 
 DATA_HELP = ("bench log: a CSV or Parquet file, or a folder with one file per test (canonical columns "
              "test_id,direction,hand_force_N,time_s,drum_temp_C,torque_Nm[,ambient_C] or mapped with --columns)")
-SMALL_CSV_BYTES = 1 << 20      # a canonical CSV up to this size is read sample by sample (the strict CSV loader)
+SMALL_CSV_BYTES = 1 << 20      # a canonical CSV up to this size is tokenized by the strict CSV loader (same rules)
 
 
 def columns_option():
@@ -36,14 +36,15 @@ def columns_option():
     return typer.Option([], "--columns", metavar="MAP",
                         help="where the quantities are and in which unit: NAME=COLUMN[unit] (e.g. "
                              "'drum_temp_C=T_drum[degF]', repeatable) or a .toml file with a [columns] table "
-                             "(default: the folder's columns.toml, if any)")
+                             "(default: the folder's columns.toml, if any); a unit that differs from the header's "
+                             "needs a trailing '!' (the header is wrong: 'drum_temp_C=T_drum[degF]!')")
 
 
 def manifest_option():
     import typer
     return typer.Option(None, "--manifest", metavar="FILE",
-                        help="CSV with test_id,direction,hand_force_N per test (a folder's manifest.csv is found "
-                             "by itself)")
+                        help="CSV with test_id,direction,hand_force_N per test, for a folder or a single log with "
+                             "a test_id column (a folder's manifest.csv is found by itself)")
 
 
 def window_option():
@@ -68,17 +69,32 @@ def load_data(path, columns=(), manifest=None, window_s=None):
     if not columns and p.is_dir() and own.is_file():          # a folder that carries its own column map
         columns = [own]
         notes.append(f"column map {own}")
+    elif columns and p.is_dir() and own.is_file():
+        notes.append(f"--columns is used, not the folder's {own.name}")
     colmap = column_map(columns)
-    streaming = bool(colmap) or manifest or window_s is not None or is_lab_format(p) or \
-        (p.is_file() and p.stat().st_size > SMALL_CSV_BYTES)
+    streaming = bool(colmap) or manifest or is_lab_format(p) or not p.is_file() or \
+        p.stat().st_size > SMALL_CSV_BYTES or _units_in_header(p)
     if streaming:
         from rollaway.bench.sources import read_log
         data = read_log(p, colmap, manifest, window_s, notes)
-    else:
-        data = load_measurements(path)
+    else:                       # the same rules and rows as the streaming reader (bench.measurements)
+        data = load_measurements(path, window_s)
+        data.notes[:0] = notes
     for note in data.notes:
         typer.echo(f"note: {note}", err=True)
     return data
+
+
+def _units_in_header(path) -> bool:
+    """True when a header cell carries a unit ('torque_Nm [kN·m]'): the column map reads it (the streaming reader)."""
+    from rollaway.bench.columns import split_header
+    from rollaway.bench.readers import read_header
+    from rollaway.errors import UserError
+    try:
+        header = read_header(path, "csv")[0]
+    except UserError:
+        return False                    # the strict loader names what is wrong with it
+    return any(split_header(h)[1] for h in header)
 
 
 def prepare_outputs(**paths) -> None:

@@ -23,9 +23,22 @@ def uncertainty_option(help: str = "draw N parameter vectors from the model file
 
 PARAMS: Optional[str] = params_option()
 UNCERTAINTY: Optional[int] = uncertainty_option()
-SEED = typer.Option(0, "--seed", metavar="N", help="random seed of the --uncertainty draws")
+SEED = typer.Option(None, "--seed", min=0, metavar="N", help="random seed of the --uncertainty draws (default 0)")
 FORMAT = typer.Option("table", "--format", metavar="FORMAT", help="csv | json | table")
 SAVE_MODEL: Optional[str] = typer.Option(
     None, "--save-model", metavar="FILE",
     help="write the calibrated model (effects, fitted values, covariance, provenance) as TOML for --params of "
          "every command")
+
+
+def only_with(mode: str, **given) -> None:
+    """UserError for options given without the mode that uses them (never silently ignored).
+
+    *mode* names the option or mode that uses them ("--analytic"); *given* maps each flag to its value,
+    None (or False, or an empty list) when it was not given."""
+    from rollaway.errors import UserError
+    used = [flag for flag, v in given.items() if v is not None and v is not False and v != [] and v != ()]
+    if used:
+        one = len(used) == 1
+        raise UserError(f"{', '.join(used)} {'is' if one else 'are'} used only with {mode}; add {mode.split(' (')[0]} "
+                        f"or leave {'it' if one else 'them'} out")

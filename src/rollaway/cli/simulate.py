@@ -67,10 +67,12 @@ def simulate(
     size: Optional[str] = typer.Option(None, "--size", metavar="WxH",
                                        help="picture size in pixels, e.g. 640x480 (default: 640x360 mp4, "
                                             "480x270 gif, 960x540 png)"),
-    after_s: float = typer.Option(10.0, "--after-s", metavar="SECONDS",
-                                  help="the video goes on this long after a roll-away (or until 15 m of travel)"),
-    multisample: int = typer.Option(0, "--multisample", metavar="N",
-                                    help="anti-aliasing samples per pixel (0: off, fast under software GL; 4: smooth)"),
+    after_s: Optional[float] = typer.Option(None, "--after-s", metavar="SECONDS",
+                                            help="the video goes on this long after a roll-away (or until 15 m of "
+                                                 "travel; default 10)"),
+    multisample: Optional[int] = typer.Option(None, "--multisample", metavar="N",
+                                              help="anti-aliasing samples per pixel (0: off, the default, fast under "
+                                                   "software GL; 4: smooth)"),
     json_file: Optional[str] = typer.Option(None, "--json", metavar="FILE", help="also write the result as JSON here"),
     mode: str = typer.Option("fast", "--mode", metavar="MODE",
                              help="fast (event-driven skip while at rest) | fixed (plain 1 ms stepping)"),
@@ -78,9 +80,9 @@ def simulate(
                                               "(.toml; replaces the scenario's 'params')"),
     uncertainty: Optional[int] = opt.uncertainty_option("draw N parameter vectors from the model's covariance and "
                                                    "simulate the --percentile draw"),
-    percentile: float = typer.Option(5.0, "--percentile", metavar="Q",
-                                     help="with --uncertainty: which draw to simulate, by its least margin "
-                                          "(5 = a pessimistic draw)"),
+    percentile: Optional[float] = typer.Option(None, "--percentile", metavar="Q",
+                                               help="with --uncertainty: which draw to simulate, by its least margin "
+                                                    "(default 5 = a pessimistic draw)"),
 ) -> int:
     """Simulate a parked car held by the drum brake in MuJoCo: held, brake_slip or tyre_skid.
 
@@ -98,9 +100,16 @@ def simulate(
 
     check_choice(fmt, REPORT_FORMATS, "--format")
     check_choice(mode, MODES, "--mode")
-    render_opts = {"size": parse_size(size), "fps": fps, "after_s": after_s, "multisample": multisample}
+    given = {"--fps": fps, "--size": size, "--after-s": after_s, "--multisample": multisample}
+    render_opts = {"size": parse_size(size), "fps": fps, "after_s": 10.0 if after_s is None else after_s,
+                   "multisample": multisample or 0}
     from rollaway.sim.render import check_render_options
     check_render_options(**render_opts)
+    if render is None:
+        opt.only_with("--render FILE (the video or picture)", **given)
+    if uncertainty is None:
+        opt.only_with("--uncertainty N (draws from the model file's covariance)", **{"--percentile": percentile})
+    percentile = 5.0 if percentile is None else percentile
     if render is not None:
         check_render_path(render)
     if json_file is not None:

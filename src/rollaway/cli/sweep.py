@@ -75,6 +75,9 @@ def sweep(
         raise UserError("--workers sets local processes; with --dask the cluster's workers run the points — "
                         "give one or the other")
     check_choice(fmt, REPORT_FORMATS, "--format")
+    if simulate == "none":
+        opt.only_with("--simulate band or all (the MuJoCo runs)", **{"--workers": workers, "--dask": dask,
+                                                                   "--retry-failed": retry_failed})
     expect_sweep(spec_path)
     spec = load_sweep(spec_path)
     out_dir = Path(out) if out else Path(f"{spec.name}-results")

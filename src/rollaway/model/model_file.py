@@ -68,8 +68,8 @@ def model_parts(data: dict, where: str = "model", base_dir: Path | None = None) 
     for key, value in data.items():
         if isinstance(value, dict):
             raise UserError(f"{where}: key '{key}' is a table{suggest(key, TABLES)}; parameters are top-level "
-                            f"'name = value' lines, and a model file's only tables are [effects.NAME], [covariance] "
-                            f"and [provenance]")
+                            f"'name = value' lines, and a model file's only tables are [effects.NAME], [covariance], "
+                            f"[provenance], [calibration] and [predictive]")
     params = parameters_from_mapping(data, where=where)
     base = data.get("extends") if isinstance(data.get("extends"), str) else None
     effects, values, files = _effects(tables.get("effects", {}), where, base_dir)
@@ -80,8 +80,24 @@ def model_parts(data: dict, where: str = "model", base_dir: Path | None = None) 
     calibration = _calibration(tables["calibration"], where) if "calibration" in tables else {}
     from rollaway.model.predictive_record import validate
     predictive = validate(tables["predictive"], where, base_dir) if "predictive" in tables else {}
+    for i, alt in enumerate(predictive.get("alternatives", [])):
+        _alternative(Path(alt["file"]), f"{where}, key 'predictive.alternatives[{i}].file'")
     return dict(params=params, effects=tuple(effects), values=values, covariance=covariance, provenance=provenance,
                 name=name, base=base, effect_files=files, calibration=calibration, predictive=predictive)
+
+
+def _alternative(path: Path, named_by: str) -> None:
+    """An alternative model file read and validated now, its errors prefixed by the key that names it; it is one
+    effect set (no alternatives of its own, so that no file is read twice)."""
+    data = read_toml(path, "alternative model file", "diagnose --save-model writes them", referenced_by=named_by)
+    pred = data.get("predictive")
+    if isinstance(pred, dict) and pred.get("alternatives"):
+        raise UserError(f"{named_by}: {path} has alternatives of its own; an alternative is one effect set — "
+                        f"delete its 'predictive.alternatives'")
+    try:
+        model_parts(data, where=str(path), base_dir=path.parent)
+    except UserError as exc:
+        raise UserError(f"{named_by}: {exc}") from None
 
 
 def _calibration(table, where: str) -> dict:
@@ -141,7 +157,8 @@ def _effects(table, where: str, base_dir: Path | None):
 
 def _number(value, where: str, key: str, unit: str = "") -> float:
     if isinstance(value, bool) or not isinstance(value, (int, float)) or not math.isfinite(float(value)):
-        raise UserError(f"{where}: key '{key}' must be a finite number{f' in {unit}' if unit else ''}, got {value!r}")
+        shown = f" in {unit}" if unit and unit not in ("-", "–") else ""
+        raise UserError(f"{where}: key '{key}' must be a finite number{shown}, got {value!r}")
     return float(value)
 
 
@@ -171,11 +188,43 @@ def _covariance(table, fitted: list[str], where: str) -> Covariance:
     if not np.allclose(m, m.T, rtol=1e-6, atol=0.0):
         raise UserError(f"{where}: key 'covariance.matrix' is not symmetric; a covariance matrix equals its "
                         f"transpose")
-    scale = np.sqrt(np.clip(np.diag(m), 0, None))
-    if np.any(np.diag(m) < 0) or np.min(np.linalg.eigvalsh(m / np.outer(scale + 1e-300, scale + 1e-300))) < -1e-8:
-        raise UserError(f"{where}: key 'covariance.matrix' is not positive semi-definite; check the values (a "
-                        f"variance is negative or a correlation exceeds 1)")
+    _check_semidefinite(m, names, where)
     return Covariance(tuple(names), m)
+
+
+def _check_semidefinite(m: np.ndarray, names: list[str], where: str) -> None:
+    """UserError naming the entry unless *m* is a covariance: variances ≥ 0, a zero variance (a parameter held
+    fixed: its draws keep the fitted value) with zero covariances, correlations that form a positive
+    semi-definite matrix."""
+    var = np.diag(m)
+    for i, v in enumerate(var):
+        if v < 0:
+            raise UserError(f"{where}: key 'covariance.matrix[{i}][{i}]' = {v:g} is a negative variance (of "
+                            f"'{names[i]}'); a variance is ≥ 0 (0: the parameter is held fixed)")
+    for i, j in zip(*np.nonzero(m)):
+        if var[i] == 0 and i != j:
+            raise UserError(f"{where}: key 'covariance.matrix[{i}][{j}]' = {m[i, j]:g} but the variance of "
+                            f"'{names[i]}' is 0 (held fixed); a fixed parameter has no covariance — set its row and "
+                            f"column to 0")
+    pos = np.flatnonzero(var > 0)
+    sd = np.sqrt(var[pos])
+    corr = m[np.ix_(pos, pos)] / sd[:, None] / sd[None, :]
+    if not np.all(np.isfinite(corr)):
+        raise UserError(f"{where}: key 'covariance.matrix' has values too large or too small to use; give it in the "
+                        f"parameters' units (as 'rollaway fit --save-model' writes it)")
+    bad = np.argwhere(np.abs(corr) > 1 + 1e-8)
+    if bad.size:
+        i, j = (int(pos[k]) for k in bad[0])
+        raise UserError(f"{where}: key 'covariance.matrix[{i}][{j}]': not positive semi-definite — the correlation "
+                        f"of '{names[i]}' and '{names[j]}' is {corr[bad[0][0], bad[0][1]]:.3g}, beyond ±1; check "
+                        f"the values")
+    try:
+        low = float(np.min(np.linalg.eigvalsh(corr))) if pos.size else 0.0
+    except np.linalg.LinAlgError:
+        low = -np.inf
+    if low < -1e-8:
+        raise UserError(f"{where}: key 'covariance.matrix' is not positive semi-definite (its correlations are "
+                        f"inconsistent: smallest eigenvalue {low:.3g}); check the values, or save the model again")
 
 
 def _provenance(table, where: str) -> dict:

@@ -46,35 +46,64 @@ def validate(table, where: str, base_dir: Path | None = None) -> dict:
         if key not in KEYS:
             raise UserError(f"{where}: unknown key 'predictive.{key}'{suggest(key, KEYS)}")
     out = dict(table)
-    for key in ("model_error_rel_sd", "tested_duration_s"):
-        if key in out and (not isinstance(out[key], (int, float)) or isinstance(out[key], bool) or out[key] < 0
-                           or not math.isfinite(out[key])):
-            raise UserError(f"{where}: key 'predictive.{key}' must be a number ≥ 0")
+    for key, top in (("model_error_rel_sd", 10.0), ("tested_duration_s", math.inf)):
+        if key in out and not (_real(out[key]) and 0 <= out[key] <= top and math.isfinite(out[key])):
+            raise UserError(f"{where}: key 'predictive.{key}' must be a number ≥ 0"
+                            + (f" and ≤ {top:g} (a relative error of the torque)" if math.isfinite(top) else "")
+                            + f", got {out[key]!r}")
+    for key in ("model_error_dof", "model_error_tests"):
+        v = out.get(key)
+        if v is not None and not (isinstance(v, int) and not isinstance(v, bool) and v >= 1):
+            raise UserError(f"{where}: key 'predictive.{key}' must be a whole number ≥ 1, got {v!r}")
     for key in ("tested_hand_force_N", "tested_initial_temp_C"):
         v = out.get(key)
-        if v is not None and not (isinstance(v, list) and len(v) == 2 and all(isinstance(x, (int, float)) for x in v)
+        if v is not None and not (isinstance(v, list) and len(v) == 2 and all(_real(x) and math.isfinite(x) for x in v)
                                   and v[0] <= v[1]):
-            raise UserError(f"{where}: key 'predictive.{key}' must be [lowest, highest], e.g. [190.0, 350.0]")
+            raise UserError(f"{where}: key 'predictive.{key}' must be [lowest, highest], finite numbers, e.g. "
+                            f"[190.0, 350.0]; got {v!r}")
     dirs = out.get("tested_directions")
     if dirs is not None and not (isinstance(dirs, list) and set(dirs) <= {"downhill", "uphill"} and dirs):
         raise UserError(f"{where}: key 'predictive.tested_directions' must list \"downhill\" and/or \"uphill\"")
-    alts = []
-    for i, a in enumerate(out.get("alternatives", []) or []):
-        if not (isinstance(a, dict) and isinstance(a.get("file"), str) and isinstance(a.get("weight"), (int, float))
-                and 0 < a["weight"] < 1):
-            raise UserError(f"{where}: key 'predictive.alternatives[{i}]' must be {{ weight = 0 < w < 1, "
-                            f"file = \"other-model.toml\" }}")
+    alts = _alternatives(out.get("alternatives", []), where, base_dir)
+    if alts:
+        out["alternatives"] = alts
+    return out
+
+
+def _real(x) -> bool:
+    return isinstance(x, (int, float)) and not isinstance(x, bool)
+
+
+def _alternatives(entries, where: str, base_dir: Path | None) -> list[dict]:
+    """The competing effect sets: each ``{ weight, file }`` once, an existing file other than the model's (its
+    content is checked by :mod:`rollaway.model.model_file`, which reads it)."""
+    if not isinstance(entries, list):
+        raise UserError(f"{where}: key 'predictive.alternatives' must be a list of {{ weight = 0 < w < 1, file = "
+                        f"\"other-model.toml\" }}, got {entries!r}")
+    alts, seen = [], {}
+    for i, a in enumerate(entries):
+        key = f"predictive.alternatives[{i}]"
+        if not (isinstance(a, dict) and isinstance(a.get("file"), str) and _real(a.get("weight"))
+                and 0 < a["weight"] < 1 and set(a) <= {"weight", "file"}):
+            raise UserError(f"{where}: key '{key}' must be {{ weight = 0 < w < 1, file = \"other-model.toml\" }} (no "
+                            f"other keys), got {a!r}")
         path = Path(a["file"]) if base_dir is None or Path(a["file"]).is_absolute() else base_dir / a["file"]
         if not path.is_file():
-            raise UserError(f"{where}: key 'predictive.alternatives[{i}].file': '{path}' does not exist; keep the "
-                            f"alternative model files beside the model file (diagnose --save-model writes them)")
+            raise UserError(f"{where}: key '{key}.file': '{path}' does not exist; keep the alternative model files "
+                            f"beside the model file (diagnose --save-model writes them)")
+        real = path.resolve()
+        if where.endswith(".toml") and real == Path(where).resolve():
+            raise UserError(f"{where}: key '{key}.file' names this model file itself; an alternative is another "
+                            f"effect set — delete the entry")
+        if real in seen:
+            raise UserError(f"{where}: key '{key}.file' names '{a['file']}' again (also alternatives[{seen[real]}]); "
+                            f"list each alternative once with its whole weight")
+        seen[real] = i
         alts.append({"weight": float(a["weight"]), "file": str(path)})
     if sum(a["weight"] for a in alts) >= 1:
         raise UserError(f"{where}: key 'predictive.alternatives': the weights add up to ≥ 1; the model itself keeps "
                         f"1 − Σ weights")
-    if alts:
-        out["alternatives"] = alts
-    return out
+    return alts
 
 
 __all__ = ["KEYS", "record", "validate"]

@@ -36,8 +36,12 @@ def draw_values(model: DrumModel, n: int, seed: int | None = 0) -> dict[str, np.
     rng = np.random.default_rng(seed)
     sd = np.sqrt(np.clip(np.diag(c.matrix), 0.0, None))
     corr = c.matrix / np.outer(np.where(sd > 0, sd, 1.0), np.where(sd > 0, sd, 1.0))
-    w, v = np.linalg.eigh(0.5 * (corr + corr.T))     # factor the correlation: variances of 1e-17 and 1e3 in one
-    root = v * np.sqrt(np.clip(w, 0.0, None))        # matrix would lose the small ones to rounding
+    try:       # factor the correlation: variances of 1e-17 and 1e3 in one matrix would lose the small ones to rounding
+        w, v = np.linalg.eigh(0.5 * (corr + corr.T))
+    except np.linalg.LinAlgError:
+        raise UserError(f"model '{model.name}': its covariance cannot be factored (not finite or not a covariance); "
+                        f"save the model again with 'rollaway fit --save-model'") from None
+    root = v * np.sqrt(np.clip(w, 0.0, None))
 
     def normal(size):
         return mean + (rng.standard_normal((size, len(mean))) @ root.T) * sd
