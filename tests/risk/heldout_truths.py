@@ -104,13 +104,18 @@ def force_threshold(base: dict = BASE, **values) -> float:
     return optimize.brentq(h, 1e-6, 1000.0, xtol=1e-12)
 
 
-def rate_force_and(name: str, spec: dict, force: dict, base: dict = BASE) -> float:
-    """Two independent inputs, the hand force and *name*: ∫ F_force(F*(x)) p(x) dx by quadrature."""
+def rate_force_and(name: str, spec: dict, force: dict, base: dict = BASE, rho: float = 0.0) -> float:
+    """Two inputs, the hand force and *name*, with a Gaussian copula of correlation *rho*: in normal scores
+    z₁ (of *name*) and z₂ (of the force), P = ∫ φ(z₁) Φ((z₂*(z₁) − ρ z₁)/√(1 − ρ²)) dz₁ by quadrature,
+    z₂* the score of the threshold force of the car with that *name* value."""
     d, df = frozen(spec), frozen(force)
-    f = lambda x: float(df.cdf(force_threshold(base, **{name: x}))) * float(d.pdf(x))  # noqa: E731
-    lo, hi = d.ppf(1e-13), d.ppf(1 - 1e-13)
-    xs = np.linspace(lo, hi, 9)
-    return float(sum(integrate.quad(f, a, b, epsabs=0, epsrel=1e-9, limit=200)[0] for a, b in zip(xs[:-1], xs[1:])))
+
+    def f(z1):
+        fstar = force_threshold(base, **{name: float(d.ppf(stats.norm.cdf(z1)))})
+        z2 = stats.norm.ppf(np.clip(df.cdf(fstar), 0.0, 1.0))
+        return stats.norm.pdf(z1) * stats.norm.cdf((z2 - rho * z1) / np.sqrt(1 - rho * rho))
+    zs = np.linspace(-7.0, 7.0, 57)
+    return float(sum(integrate.quad(f, a, b, epsabs=1e-16, epsrel=1e-8, limit=100)[0] for a, b in zip(zs[:-1], zs[1:])))
 
 
 def sample(spec: dict, u: np.ndarray) -> np.ndarray:
