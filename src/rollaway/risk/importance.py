@@ -11,7 +11,8 @@
   which gradients cannot cross, so each combination of choices (up to :data:`MAX_STRATA`) is a
   stratum with its own design points: ``P = Σ_c w_c·P_c``.  A stratum where FORM finds no failing
   point gets a plain Monte Carlo check of :data:`CHECK_CARS` cars; if none fails it counts 0 — an
-  assumption, reported as ``strata_without_failure``.  Samples go, chunk after chunk, to the stratum
+  assumption, reported as ``strata_without_failure`` — and the interval's upper end grows by the
+  stratum's weight times the check's Wilson upper bound (0 failures seen is no proof of none).  Samples go, chunk after chunk, to the stratum
   with the largest share of the variance until the 95 % interval is within ±:data:`TARGET_REL_HALF_WIDTH`.
 """
 from __future__ import annotations
@@ -21,7 +22,7 @@ import itertools
 import numpy as np
 from scipy import special
 
-from rollaway.risk.rates import Z95, Estimate, Evaluator, Rate
+from rollaway.risk.rates import Z95, Estimate, Evaluator, Rate, wilson
 
 TARGET_REL_HALF_WIDTH = 0.15   # importance sampling stops when its 95 % interval is within ±15 %
 IS_CHUNK = 10_000
@@ -223,7 +224,9 @@ def importance_sampling(population, samples: int, seed: int | None = 0, progress
     def rate(i):
         p, var = total(i)
         half = Z95 * np.sqrt(var)
-        return Rate(float(p), (float(max(p - half, 0.0)), float(min(p + half, 1.0))))
+        # a stratum whose check saw no failure counts 0, but only its check bounds it: its Wilson upper end
+        unseen = sum(s.weight * wilson(0, s.n)[1] for s in strata if s.mc and s.sums[i, 0] == 0 and s.n)
+        return Rate(float(p), (float(max(p - half, 0.0)), float(min(p + half + unseen, 1.0))))
     betas = [b for s in strata for b in s.betas]
     return Estimate(rate(0), rate(1), rate(2), "is", ev.calls,
                     {"beta": float(min(betas)) if betas else float("inf"), "strata": len(strata),
