@@ -37,7 +37,7 @@ def least_margins(values: dict, base: dict = BASE):
         brake = np.minimum(brake, min_brake_margin(params, case["hand_force_N"], case["grade_pct"], d,
                                                    case["occupants"], case["duration_s"], **kw))
         tyre = np.minimum(tyre, tyre_adhesion_margin(params, case["grade_pct"], d, case["occupants"]))
-    return np.asarray(brake, float), np.broadcast_to(np.asarray(tyre, float), np.shape(brake))
+    return np.broadcast_arrays(np.asarray(brake, float), np.asarray(tyre, float))
 
 
 def fails_margin(values: dict, base: dict = BASE) -> np.ndarray:

@@ -160,3 +160,13 @@ def test_held_out_bad_populations_are_one_line_errors(write_population, text, ke
         load_population(path)
     msg = str(err.value)
     assert "\n" not in msg and str(path) in msg and f"'{key}" in msg, msg
+
+
+def test_one_ppm_of_tyre_skids_is_the_tyre_mode():
+    """tyre_road_mu normal, a strong brake on 30 %: only the tyres skid, at 1 ppm (the threshold by Brent)."""
+    base = {**BASE, "hand_force_N": 500, "mu_drum": 0.5, "direction": "both", "grade_pct": 30}
+    mu_star = optimize.brentq(lambda m: float(fails_margin({"tyre_road_mu": m}, base).ravel()[0]), 0.05, 2.0,
+                              xtol=1e-14)
+    pop = _pop(base, {"tyre_road_mu": {"normal": [mu_star + Z6 * 0.05, 0.05]}})
+    e = _coverage(pop, 1e-6, range(6), samples=1_000_000, within=0.3)
+    assert e.brake.probability == 0 and abs(e.tyres.probability / 1e-6 - 1) < 0.3
