@@ -170,3 +170,9 @@ def test_one_ppm_of_tyre_skids_is_the_tyre_mode():
     pop = _pop(base, {"tyre_road_mu": {"normal": [mu_star + Z6 * 0.05, 0.05]}})
     e = _coverage(pop, 1e-6, range(6), samples=1_000_000, within=0.3)
     assert e.brake.probability == 0 and abs(e.tyres.probability / 1e-6 - 1) < 0.3
+
+
+def test_a_negative_seed_is_a_one_line_error():
+    pop = _pop(BASE, {"mu_drum": {"uniform": [0.3, 0.6]}})
+    with pytest.raises(UserError, match="--seed -5 must be a whole number"):
+        estimate(pop, "mc", 1000, -5)

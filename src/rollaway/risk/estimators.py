@@ -58,6 +58,8 @@ def estimate(population, method: str = "auto", samples: int = 1_000_000, seed: i
         check_choice(method, METHODS, "--method")
     if not (isinstance(samples, (int, np.integer)) and samples >= 100):
         raise UserError(f"--samples {samples} must be a whole number ≥ 100, e.g. 1000000")
+    if seed is not None and not (isinstance(seed, (int, np.integer)) and not isinstance(seed, bool) and seed >= 0):
+        raise UserError(f"--seed {seed} must be a whole number ≥ 0, e.g. 0")
     spent = 0
     if population.dim == 0 and method != "mc":       # nothing varied (a calibrated model's own scatter at most)
         est = monte_carlo(population, samples, seed, progress, executor)
