@@ -44,3 +44,19 @@ def test_choice_input_is_stratified_and_matches_the_weighted_sum(write_populatio
     e = estimate(pop, "is", 200_000, seed=1)
     assert e.detail["strata"] == 2
     assert e.total.ci95[0] <= truth <= e.total.ci95[1], (e.total, truth)
+
+
+def test_design_points_finds_both_parts_of_a_failure_set(write_population):
+    """A grade scattering through zero facing either way fails at both ends: two design points, ±u*."""
+    import numpy as np
+
+    from rollaway.risk.importance import design_points
+    from rollaway.risk.rates import Evaluator
+    path = write_population("[vary]\ngrade_pct = { normal = [0, 6] }\n",
+                            head='direction = "both"\noccupants = 5\nhand_force_N = 300\nduration_s = 300\n'
+                                 'initial_drum_temp_C = 200\n')
+    pop = load_population(path)
+    found = design_points(Evaluator(pop, np.random.default_rng(0)), np.arange(1), np.zeros(1), "least")
+    signs = sorted(np.sign(u[0]) for u, _ in found)
+    assert signs == [-1.0, 1.0], found
+    assert abs(found[0][1] - found[1][1]) < 1e-3          # symmetric facings: the same β

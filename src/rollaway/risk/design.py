@@ -77,6 +77,18 @@ def _setter(population: Population, name: str):
     return (lambda v: population.with_fixed(name, v)), (lo, hi), now
 
 
+def _log_root(rate, target: float, good: float, bad: float, tol: float) -> float:
+    """The value between *good* (rate ≤ target) and *bad* where log rate = log target (Brent), then
+    stepped towards *good* until its own estimate meets the target."""
+    from scipy.optimize import brentq
+
+    value = brentq(lambda v: math.log(max(rate(v), 1e-300)) - math.log(target), good, bad, xtol=tol)
+    step = math.copysign(tol, good - value)
+    while rate(value) > target and (good - value) * step > 0:
+        value += step
+    return value
+
+
 def design(population: Population, name: str, target: float, samples: int = 1_000_000, seed: int | None = 0,
            tolerance: float | None = None) -> Design:
     """Least or greatest value of *name* whose roll-away rate is ≤ *target* (module docstring)."""
@@ -86,7 +98,7 @@ def design(population: Population, name: str, target: float, samples: int = 1_00
     n = int(min(samples, MAX_MC_CARS))
     rng = np.random.default_rng(seed)
     crn = target * n >= MC_FAILURES
-    tol = tolerance if tolerance is not None else (1e-4 if crn else 1e-3) * (hi - lo)
+    tol = tolerance if tolerance is not None else (1e-4 if crn else 1e-5) * (hi - lo)
     if crn:
         u = rng.standard_normal((n, population.dim))
         draws = model_draws(population, n, rng)
@@ -110,7 +122,7 @@ def design(population: Population, name: str, target: float, samples: int = 1_00
                         f"gives {min(r_lo, r_hi):.3g}); the target needs more than this input")
     if max(r_lo, r_hi) <= target:
         value = bad                   # the whole range meets the target: the worst end still does
-    else:
+    elif crn:                         # a step function of the value: bisection to the step
         while abs(good - bad) > tol:
             mid = 0.5 * (good + bad)
             if rate(mid)[0] <= target:
@@ -118,6 +130,8 @@ def design(population: Population, name: str, target: float, samples: int = 1_00
             else:
                 bad = mid
         value = good
+    else:                             # importance sampling, same seed: smooth in the value, Brent on log P
+        value = _log_root(lambda v: rate(v)[0], target, good, bad, tol)
     p, ci = rate(value)
     width = max(abs(value) * 0.25, (hi - lo) / 20)
     grid = np.linspace(max(lo, value - width), min(hi, value + width), CURVE_POINTS if crn else CURVE_POINTS // 2)

@@ -15,21 +15,14 @@ All work in the standard-normal space u of the population (:meth:`Population.val
 from __future__ import annotations
 
 import numpy as np
-from scipy import stats
 
 from rollaway.errors import UserError
-from rollaway.risk.rates import Estimate, Evaluator, Rate
+from rollaway.risk.rates import Estimate, Evaluator, Rate, wilson
 
 METHODS = ("auto", "mc", "is", "subset", "form")
 CHUNK = 250_000               # cars per streamed chunk
 PILOT = 100_000               # cars of the pilot run of method "auto"
 AUTO_MC_FAILURES = 50         # pilot failures from which plain Monte Carlo is accurate enough (±28 %)
-
-
-def wilson(k: int, n: int) -> tuple[float, float]:
-    """Wilson's score interval of k failures in n cars (95 %)."""
-    ci = stats.binomtest(int(k), int(n)).proportion_ci(0.95, method="wilson")
-    return float(ci.low), float(ci.high)
 
 
 def monte_carlo(population, samples: int, seed: int | None = 0, progress=None, executor=None) -> Estimate:
@@ -65,6 +58,8 @@ def estimate(population, method: str = "auto", samples: int = 1_000_000, seed: i
         check_choice(method, METHODS, "--method")
     if not (isinstance(samples, (int, np.integer)) and samples >= 100):
         raise UserError(f"--samples {samples} must be a whole number ≥ 100, e.g. 1000000")
+    if seed is not None and not (isinstance(seed, (int, np.integer)) and not isinstance(seed, bool) and seed >= 0):
+        raise UserError(f"--seed {seed} must be a whole number ≥ 0, e.g. 0")
     spent = 0
     if population.dim == 0 and method != "mc":       # nothing varied (a calibrated model's own scatter at most)
         est = monte_carlo(population, samples, seed, progress, executor)

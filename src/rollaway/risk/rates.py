@@ -70,6 +70,7 @@ class Evaluator:
 
 
 def wilson(k: int, n: int) -> tuple[float, float]:
+    """Wilson's score interval of k failures in n cars (95 %)."""
     ci = stats.binomtest(int(k), int(n)).proportion_ci(0.95, method="wilson")
     return float(ci.low), float(ci.high)
 

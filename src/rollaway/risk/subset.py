@@ -13,7 +13,7 @@ import numpy as np
 from scipy import stats
 
 from rollaway.errors import UserError
-from rollaway.risk.rates import Estimate, Evaluator, Rate
+from rollaway.risk.rates import Estimate, Evaluator, Rate, wilson
 
 SUBSET_RUNS = 4               # independent subset-simulation runs: their spread is the interval
 LEVELS = 6                    # levels a run is budgeted for (p₀ = 0.1: down to about 1e-6)
@@ -34,7 +34,8 @@ def _subset_run(ev: Evaluator, d: int, per_level: int, seed: int, component: str
 
 def subset(population, samples: int, seed: int | None = 0, progress=None) -> Estimate:
     """Subset simulation by OpenTURNS: :data:`SUBSET_RUNS` independent runs of the rate; estimate = their
-    mean, interval = Student's t on their spread.  The budget goes to the rate alone: the per-mode
+    mean, interval = Student's t on their spread (where no run saw a failure, [0, Wilson's upper end
+    of 0 failures in the runs' first-level cars]).  The budget goes to the rate alone: the per-mode
     rates (brake, tyres) are not estimated (NaN)."""
     d = population.dim
     if d == 0:
@@ -50,6 +51,8 @@ def subset(population, samples: int, seed: int | None = 0, progress=None) -> Est
     runs = np.array(runs)
     p = float(runs.mean())
     half = float(stats.t.isf(0.025, SUBSET_RUNS - 1) * runs.std(ddof=1) / np.sqrt(SUBSET_RUNS))
+    if not np.any(runs > 0):           # no run reached a failure: the cars of the first levels bound the rate
+        half = wilson(0, SUBSET_RUNS * per_level)[1]
     nan = Rate(float("nan"), (float("nan"), float("nan")))
     return Estimate(Rate(p, (max(p - half, 0.0), min(p + half, 1.0))), nan, nan, "subset", ev.calls,
                     {"runs": SUBSET_RUNS, "samples_per_level": per_level,
