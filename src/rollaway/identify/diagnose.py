@@ -32,8 +32,8 @@ from rollaway.identify.fitting import single_blas_thread
 from rollaway.bench.measurements import Measurements
 from rollaway.bench.noise import Noise, noise_estimate, sample_sigma
 from rollaway.identify.diagnose_words import describe_residual, score_text, no_candidate_words, noise_words, structure_words
-from rollaway.identify.selection import (BIC_THRESHOLD, Candidate, cv_score, eliminate, exchange, folds, forward_step,
-                                         has_per_test, per_test_signature, structure, weighted_chi2)
+from rollaway.identify.selection import (BIC_THRESHOLD, Candidate, beyond_reform, cv_score, eliminate, exchange, folds,
+                                         forward_step, has_per_test, per_test_signature, structure, weighted_chi2)
 from rollaway.jsonsafe import to_jsonable
 from rollaway.uncertainty.bands import validity
 
@@ -198,11 +198,21 @@ def diagnose(data: Measurements, params=None, effects=None, *, noise_torque_Nm: 
                 ev.append(no_candidate_words(cands, strong, cur_cv))
             break
         best = passing[0]
+        own = beyond_reform(data, params, chosen, current, best) if chosen else None
+        if own is not None and not own["passes"]:
+            steps.append({"step": step, "added": None, "best": best.effect, "delta_bic": best.delta_bic,
+                          "cv_score": best.cv_score, "current_cv": cur_cv, "beyond_reform": own})
+            ev.append(f"Step {step}: {best.effect} lowers BIC by {-best.delta_bic:.1f} and predicts held-out tests "
+                      f"better than {chosen[0]} alone, but not beyond {chosen[0]} re-formed (its hook as a linear "
+                      f"spline, no second effect): held-out log score {own['heldout_elpd']:+.1f} ± "
+                      f"{own['heldout_se']:.1f} — a partner that only absorbs the first effect's form mismatch; "
+                      f"not named.")
+            break
         chosen.append(best.effect)
         struct = structure(best.fit, nq, nt)
         steps.append({"step": step, "added": best.effect, "delta_bic": best.delta_bic, "cv_score": best.cv_score,
                       "current_cv": cur_cv, "cv_better_tests": best.cv_better_tests,
-                      "structured": struct["structured"]})
+                      "structured": struct["structured"], **({"beyond_reform": own} if own else {})})
         ev.append(f"Step {step}: adding {best.effect} lowers BIC by {-best.delta_bic:.1f} (threshold "
                   f"{-BIC_THRESHOLD:g}); torque RMSE {current.rmse_torque_Nm:.3g} → {best.fit.rmse_torque_Nm:.3g} N·m, "
                   f"temperature RMSE {current.rmse_temp_C:.3g} → {best.fit.rmse_temp_C:.3g} °C; held-out error "
