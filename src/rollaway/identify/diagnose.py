@@ -29,6 +29,7 @@ from rollaway.identify.coarse import MAX_WINDOW_S, coarsen
 from rollaway.identify.drum import DrumCalibration, calibrate_drum, predictive_covariance, recheck
 from rollaway.identify.export import CalibratedModelMixin
 from rollaway.identify.fitting import single_blas_thread
+from rollaway.identify.intervals import covariance_variances, ess_inflation, mixture_variances, restate
 from rollaway.bench.measurements import Measurements
 from rollaway.bench.noise import Noise, noise_estimate, sample_sigma
 from rollaway.identify.diagnose_words import describe_residual, score_text, no_candidate_words, noise_words, structure_words
@@ -289,12 +290,25 @@ def diagnose(data: Measurements, params=None, effects=None, *, noise_torque_Nm: 
         ev.append(f"Selection ran on {len(data)} rows (consecutive rows of each test merged, windows ≤ "
                   f"{MAX_WINDOW_S:g} s); the chosen model was refitted on all {len(full)} rows.")
         data = full
-    drum.update(refined)
-    refined.covariance = predictive_covariance(refined, drum.fixed_priors())
-    refined.fit_info["calibration"] = drum.record()
+    refined.covariance = predictive_covariance(refined, drum.fixed_priors(), ess_inflation(refined))
     _predictive(data, refined, pool, len(selected), drum, misfit, [a["fit"] for a in rivalry])
+    alts = refined.fit_info.get("alternatives") or []
+    restate(refined, mixture_variances(refined, alts) or covariance_variances(refined))
+    drum.update(refined)
+    refined.fit_info["calibration"] = drum.record()
+    ev.append(_interval_words(refined, drum, alts))
     return Diagnosis(data, paper, base, nq, nt, first_cands, verdict, indist, refined,
                      remaining, struct, base_cv, ev, selected, steps, shape, drum, rivalry)
+
+
+def _interval_words(fit: FitResult, drum: DrumCalibration, alts) -> str:
+    k = ess_inflation(fit)
+    fixed = sorted(drum.fixed_priors())
+    return ("Parameter intervals count " + "; ".join(filter(None, [
+        "autocorrelated residuals (variance × " + ", ".join(f"{v:.2g} {ch}" for ch, v in k.items()) + ")",
+        f"the assumed spread of {', '.join(fixed)} (held, not known)" if fixed else "",
+        f"{len(alts)} competing effect set{'s' if len(alts) > 1 else ''} (mixture)" if alts else ""]))
+        + " (rollaway.identify.intervals).")
 
 
 def _rivals(selected: list[dict], first: list[Candidate], base_cv, tested: dict, nq: Noise) -> list[dict]:
@@ -356,7 +370,7 @@ def _predictive(data, refined: FitResult, pool: list[FitResult], n_effects: int,
     for w, f in mix:
         if f is refined:
             continue
-        f.covariance = predictive_covariance(f, drum.fixed_priors())
+        f.covariance = predictive_covariance(f, drum.fixed_priors(), ess_inflation(f))
         f.fit_info["predictive"] = record(model_error(f), val)
         f.fit_info["calibration"] = drum.record()
         alts.append((w, f))
