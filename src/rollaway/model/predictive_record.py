@@ -6,6 +6,7 @@ draws)::
 
     [predictive]
     model_error_rel_sd = 0.006         # leave-one-test-out relative torque error where margins are decided
+    model_error_floor_rel_sd = 0.004   # the noise's resolution of that error: the least used beyond the tested range
     model_error_dof = 7                # tests − 1 (the error is drawn from a Student-t)
     tested_hand_force_N = [190.0, 350.0]
     tested_initial_temp_C = [104.2, 296.0]
@@ -22,7 +23,7 @@ from pathlib import Path
 
 from rollaway.errors import UserError, suggest
 
-KEYS = ("model_error_rel_sd", "model_error_dof", "model_error_tests", "tested_hand_force_N", "tested_initial_temp_C",
+KEYS = ("model_error_rel_sd", "model_error_floor_rel_sd", "model_error_dof", "model_error_tests", "tested_hand_force_N", "tested_initial_temp_C",
         "tested_duration_s", "tested_directions", "alternatives")
 
 
@@ -30,6 +31,7 @@ def record(model_error: dict, validity: dict, alternatives=()) -> dict:
     """The ``[predictive]`` table from :func:`rollaway.uncertainty.bands.model_error` and ``validity``."""
     out = {"model_error_rel_sd": float(model_error["rel_sd"]), "model_error_dof": int(model_error["dof"]),
            "model_error_tests": int(model_error["tests"]),
+           "model_error_floor_rel_sd": float(model_error.get("floor_rel_sd", 0.0)),
            "tested_hand_force_N": list(validity["hand_force_N"]),
            "tested_initial_temp_C": list(validity["initial_temp_C"]),
            "tested_duration_s": float(validity["duration_s"]), "tested_directions": list(validity["directions"])}
@@ -46,7 +48,7 @@ def validate(table, where: str, base_dir: Path | None = None) -> dict:
         if key not in KEYS:
             raise UserError(f"{where}: unknown key 'predictive.{key}'{suggest(key, KEYS)}")
     out = dict(table)
-    for key in ("model_error_rel_sd", "tested_duration_s"):
+    for key in ("model_error_rel_sd", "model_error_floor_rel_sd", "tested_duration_s"):
         if key in out and (not isinstance(out[key], (int, float)) or isinstance(out[key], bool) or out[key] < 0
                            or not math.isfinite(out[key])):
             raise UserError(f"{where}: key 'predictive.{key}' must be a number ≥ 0")

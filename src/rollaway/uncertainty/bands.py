@@ -14,7 +14,9 @@ question also depends on which effects were chosen and on how wrong the chosen f
   in its scores, Student-t in its use (a handful of tests cannot give a finite 90 % conformal
   quantile).  When the saved form is known to leave structure (an effect named "partial", or
   structure remaining), the held-out tests saw that misfit only in part: ``rel_sd`` is widened
-  (:data:`MISFIT_INFLATION`, assumed);
+  (:data:`MISFIT_INFLATION`, assumed).  ``floor_rel_sd`` is the resolution of those scores: the
+  relative error one test's noise alone gives where its margin is decided.  A model error below it
+  cannot be told from zero, so a question beyond the tested range never uses less;
 * **choice of effects** — competing effect sets the data cannot rule out (within
   :data:`COMPETING_BIC` of the selected one, and always those named beside the verdict as
   indistinguishable) get pseudo-BMA weights from their leave-one-test-out
@@ -70,10 +72,11 @@ def model_error(fit, misfit: bool = False) -> dict:
         noise.append(float(np.mean((d.torque_sigma_Nm[low] / level) ** 2) / low.size))
     s2 = np.asarray(scores) ** 2
     rel_sd = math.sqrt(max(float(np.mean(s2) - np.mean(noise)), 0.0)) if scores else 0.0
+    floor = math.sqrt(float(np.mean(noise))) if noise else 0.0
     if misfit:
         rel_sd *= MISFIT_INFLATION
     return {"rel_sd": rel_sd, "dof": max(len(scores) - 1, 1), "tests": len(scores),
-            "per_test": [float(x) for x in scores], "misfit": misfit}
+            "per_test": [float(x) for x in scores], "misfit": misfit, "floor_rel_sd": floor}
 
 
 def alternatives(selected, competitors: list, keep=()) -> list[tuple[float, object]]:
