@@ -37,8 +37,8 @@ MAX_RHO = 0.95               # (1 + ρ)/(1 − ρ) ≤ 39: a residual that is on
 def lag1(fit, channel: str) -> float:
     """Lag-1 autocorrelation of the standardised residual of *channel* over consecutive samples of each test."""
     d = fit.data
-    n = len(d)
     rt, rq = fit.residuals()
+    n = len(rq)
     r = (rq / d.torque_sigma_Nm) if channel == "torque" else (rt / d.temp_sigma_C)
     r = np.asarray(r, float)
     mean = np.bincount(d.test_index, r, d.n_tests) / np.maximum(np.bincount(d.test_index, None, d.n_tests), 1)
