@@ -181,16 +181,18 @@ def diagnose(data: Measurements, params=None, effects=None, *, noise_torque_Nm: 
           f"{base.rmse_torque_Nm:.3g} N·m and {base.rmse_temp_C:.3g} °C; "
           + describe_residual(base, "torque") + "; " + describe_residual(base, "temperature") + "."]
     current, chosen, steps, fits = base, [], [], []
-    first_cands, base_cv, indist, struct = [], None, [], base_struct
+    first_cands, base_cv, indist, struct, alone = [], None, [], base_struct, {}
     for step in range(1, max_effects + 1):
         per_test_ok = per_test_signature(current, nq)
-        cands, strong, passing, cur_cv = forward_step(data, params, names, current, chosen, step, per_test_ok)
+        tried = names if step == 1 else [n for n in names if alone.get(n, -np.inf) < 0.0]   # evidence alone
+        cands, strong, passing, cur_cv = forward_step(data, params, tried, current, chosen, step, per_test_ok)
         if not per_test_ok and any(has_per_test(n) for n in names if n not in chosen):
             ev.append(f"Step {step}: per-test effects ({', '.join(n for n in names if has_per_test(n))}) not "
                       f"tried: the torque residual is not a constant offset within each test (its test means "
                       f"{'do not differ' if not _test_offsets(current, nq) else 'differ, but structure remains within the tests'}).")
         if step == 1:
             first_cands, base_cv = cands, cur_cv
+            alone = {c.effect: c.delta_bic for c in cands}
         if not passing:
             steps.append({"step": step, "added": None, "best": cands[0].effect if cands else None,
                           "delta_bic": cands[0].delta_bic if cands else None,
