@@ -181,18 +181,16 @@ def diagnose(data: Measurements, params=None, effects=None, *, noise_torque_Nm: 
           f"{base.rmse_torque_Nm:.3g} N·m and {base.rmse_temp_C:.3g} °C; "
           + describe_residual(base, "torque") + "; " + describe_residual(base, "temperature") + "."]
     current, chosen, steps, fits = base, [], [], []
-    first_cands, base_cv, indist, struct, alone = [], None, [], base_struct, {}
+    first_cands, base_cv, indist, struct = [], None, [], base_struct
     for step in range(1, max_effects + 1):
         per_test_ok = per_test_signature(current, nq)
-        tried = names if step == 1 else [n for n in names if alone.get(n, -np.inf) < 0.0]   # evidence alone
-        cands, strong, passing, cur_cv = forward_step(data, params, tried, current, chosen, step, per_test_ok)
+        cands, strong, passing, cur_cv = forward_step(data, params, names, current, chosen, step, per_test_ok)
         if not per_test_ok and any(has_per_test(n) for n in names if n not in chosen):
             ev.append(f"Step {step}: per-test effects ({', '.join(n for n in names if has_per_test(n))}) not "
                       f"tried: the torque residual is not a constant offset within each test (its test means "
                       f"{'do not differ' if not _test_offsets(current, nq) else 'differ, but structure remains within the tests'}).")
         if step == 1:
             first_cands, base_cv = cands, cur_cv
-            alone = {c.effect: c.delta_bic for c in cands}
         if not passing:
             steps.append({"step": step, "added": None, "best": cands[0].effect if cands else None,
                           "delta_bic": cands[0].delta_bic if cands else None,
@@ -201,21 +199,11 @@ def diagnose(data: Measurements, params=None, effects=None, *, noise_torque_Nm: 
                 ev.append(no_candidate_words(cands, strong, cur_cv))
             break
         best = passing[0]
-        own = beyond_reform(data, params, chosen, current, best) if chosen else None
-        if own is not None and not own["passes"]:
-            steps.append({"step": step, "added": None, "best": best.effect, "delta_bic": best.delta_bic,
-                          "cv_score": best.cv_score, "current_cv": cur_cv, "beyond_reform": own})
-            ev.append(f"Step {step}: {best.effect} lowers BIC by {-best.delta_bic:.1f} and predicts held-out tests "
-                      f"better than {chosen[0]} alone, but not beyond {chosen[0]} re-formed (its hook as a linear "
-                      f"spline, no second effect): held-out log score {own['heldout_elpd']:+.1f} ± "
-                      f"{own['heldout_se']:.1f} — a partner that only absorbs the first effect's form mismatch; "
-                      f"not named.")
-            break
         chosen.append(best.effect)
         struct = structure(best.fit, nq, nt)
         steps.append({"step": step, "added": best.effect, "delta_bic": best.delta_bic, "cv_score": best.cv_score,
                       "current_cv": cur_cv, "cv_better_tests": best.cv_better_tests,
-                      "structured": struct["structured"], **({"beyond_reform": own} if own else {})})
+                      "structured": struct["structured"]})
         ev.append(f"Step {step}: adding {best.effect} lowers BIC by {-best.delta_bic:.1f} (threshold "
                   f"{-BIC_THRESHOLD:g}); torque RMSE {current.rmse_torque_Nm:.3g} → {best.fit.rmse_torque_Nm:.3g} N·m, "
                   f"temperature RMSE {current.rmse_temp_C:.3g} → {best.fit.rmse_temp_C:.3g} °C; held-out error "
@@ -233,6 +221,8 @@ def diagnose(data: Measurements, params=None, effects=None, *, noise_torque_Nm: 
             steps.append({"step": "exchange", "swaps": swaps})
             ev.append("Exchange step: " + "; ".join(f"{a} replaced by {b} (BIC {d:+.1f})" for a, b, d in swaps)
                       + " — an effect picked early had absorbed part of a later one's signature.")
+    if len(chosen) == 2:
+        chosen, current, struct, fits = _own_evidence(data, params, chosen, current, struct, fits, nq, nt, steps, ev)
     refined = current
     selected = [{"effect": e, "form": "exact"} for e in chosen]
     shape = None
@@ -301,6 +291,24 @@ def diagnose(data: Measurements, params=None, effects=None, *, noise_torque_Nm: 
     ev.append(_interval_words(refined, drum, alts))
     return Diagnosis(data, paper, base, nq, nt, first_cands, verdict, indist, refined,
                      remaining, struct, base_cv, ev, selected, steps, shape, drum, rivalry)
+
+
+def _own_evidence(data, params, chosen, current, struct, fits, nq, nt, steps, ev):
+    """Keep the second of two selected effects only if it predicts held-out tests better than the first
+    re-formed (:func:`rollaway.identify.selection.beyond_reform`); else drop it and keep the first alone."""
+    own = beyond_reform(data, params, chosen[:1], current, current)
+    if own is None:
+        return chosen, current, struct, fits
+    steps.append({"step": "own evidence", "effect": chosen[1], "kept": own["passes"], "beyond_reform": own})
+    if own["passes"]:
+        return chosen, current, struct, fits
+    first = fits[0] if fits and fits[0] is not None and fits[0].effects == chosen[:1] else \
+        calibrate(data, chosen[:1], params, start=current.values)
+    ev.append(f"{chosen[1]} lowers BIC and predicts held-out tests better beside {chosen[0]}, but not beyond "
+              f"{chosen[0]} re-formed (its hook as a linear spline, no second effect): held-out log score "
+              f"{own['heldout_elpd']:+.1f} ± {own['heldout_se']:.1f}, better in {own['better_tests']} of "
+              f"{own['tests']} tests — a partner that only absorbs the first effect's form mismatch; not named.")
+    return chosen[:1], first, structure(first, nq, nt), [first]
 
 
 def _interval_words(fit: FitResult, drum: DrumCalibration, alts) -> str:

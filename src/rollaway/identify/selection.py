@@ -246,11 +246,12 @@ def eliminate(data, params, chosen, current, struct, nq, nt):
 
 
 # -- a second effect on its own evidence ---------------------------------------------------
-def beyond_reform(data, params, chosen: list[str], current: FitResult, cand: Candidate) -> dict | None:
-    """Does *cand* (added to the effects *chosen*, fitted in *current*) predict held-out tests better than
+def beyond_reform(data, params, chosen: list[str], current: FitResult, two: FitResult) -> dict | None:
+    """Does the fit *two* (the effect *chosen* plus a second one) predict held-out tests better than
     the first effect re-formed — its hook changed by a linear spline of its covariate
     (:func:`rollaway.identify.shape.flexible_effect`), no second effect?  A partner that only absorbs a
-    mis-formed first effect's misfit does not: then it is no discovery.
+    mis-formed first effect's misfit does not: then it is no discovery.  *current*: a fit whose prediction
+    gives the first effect's covariate (lining temperature, …) and the start values.
 
     Returns None when the first effect has no flexible form (nothing to compare), else
     ``{"passes", "heldout_elpd", "heldout_se", "better_tests", "channels"}``: *passes* when the held-out log
@@ -261,7 +262,7 @@ def beyond_reform(data, params, chosen: list[str], current: FitResult, cand: Can
     from rollaway.effects import get_effect
     from rollaway.identify.ambiguity import HELDOUT_SE
     from rollaway.identify.shape import covariate_of, flexible_effect, shape_hook
-    if len(chosen) != 1 or cand.fit.jacobian is None:
+    if len(chosen) != 1 or two.jacobian is None:
         return None
     eff = get_effect(chosen[0])
     found = shape_hook(eff)
@@ -276,7 +277,7 @@ def beyond_reform(data, params, chosen: list[str], current: FitResult, cand: Can
     n = len(d)
     out = {"channels": {}}
     per = {}
-    for key, fit in (("reform", reform), ("two", cand.fit)):
+    for key, fit in (("reform", reform), ("two", two)):
         r2 = loto_residuals(fit) ** 2
         per[key] = {"temperature": np.bincount(d.test_index, r2[:n], d.n_tests),
                     "torque": np.bincount(d.test_index, r2[n:], d.n_tests)}
