@@ -12,7 +12,8 @@ The held-out comparison is the paired difference of the per-test leave-one-test-
 (Gaussian log score, :func:`rollaway.uncertainty.heldout.loto_scores`) with its standard error
 √(n·var(d)) over the n tests (Vehtari, Gelman & Gabry 2017, "Practical Bayesian model evaluation
 using leave-one-out cross-validation and WAIC", Stat. Comput. 27, §5.2 "standard error of the
-difference"); "prefers" means a difference beyond :data:`HELDOUT_SE` standard errors.
+difference"); "prefers" means a difference beyond :data:`HELDOUT_SE` standard errors and beyond
+:data:`SMALL_ELPD` (with a handful of tests a consistent small difference has a tiny standard error).
 
 :func:`tell_apart` says what test would separate two fitted models: both calibrated drum models
 predict the torque over a grid of road/bench conditions — both directions, hand forces 25 % beyond
@@ -31,6 +32,9 @@ from rollaway.uncertainty.heldout import loto_scores
 
 INDISTINGUISHABLE_BIC = 6.0   # "positive" evidence at most (Kass & Raftery 1995): no choice on BIC alone
 HELDOUT_SE = 2.0              # a held-out preference beyond 2 standard errors of the paired difference
+SMALL_ELPD = 4.0              # ... and beyond 4 in log score: below it the difference is small and its standard
+                              # error unreliable (Sivula, Magnusson & Vehtari 2020, "Uncertainty in Bayesian
+                              # leave-one-out cross-validation based model comparison", §5; the loo CV-FAQ)
 MAX_RIVALS = 2                # at most this many alternatives are named beside the verdict
 FORCE_REACH = 0.25            # hand forces this far beyond the tested range (relative) [assumed]
 TEMP_REACH_C = 50.0           # start temperatures this far beyond the tested range [assumed]
@@ -59,7 +63,7 @@ def rivals(best, candidates: list, threshold: float) -> list[dict]:
             continue
         dbic = c.delta_bic - best.delta_bic
         elpd, se = heldout_difference(best.fit, c.fit)
-        if dbic < INDISTINGUISHABLE_BIC and elpd > -HELDOUT_SE * se:
+        if dbic < INDISTINGUISHABLE_BIC and elpd > -max(HELDOUT_SE * se, SMALL_ELPD):
             why = (f"BIC within {INDISTINGUISHABLE_BIC:g} ({dbic:+.1f}) and the held-out prediction does not prefer "
                    f"either (Δ log score {elpd:+.1f} ± {se:.1f})")
         elif elpd > 0:
@@ -143,5 +147,5 @@ def verdict_line(verdict: str, alternatives: list[dict]) -> str:
     return f"{names}: these data cannot tell them apart; {alternatives[0]['tell_apart']['words']}"
 
 
-__all__ = ["HELDOUT_SE", "INDISTINGUISHABLE_BIC", "MAX_RIVALS", "heldout_difference", "rivals", "tell_apart",
+__all__ = ["HELDOUT_SE", "INDISTINGUISHABLE_BIC", "SMALL_ELPD", "MAX_RIVALS", "heldout_difference", "rivals", "tell_apart",
            "verdict_line"]

@@ -258,11 +258,12 @@ def beyond_reform(data, params, chosen: list[str], current: FitResult, two: FitR
     Returns None when the first effect has no flexible form (nothing to compare), else
     ``{"passes", "heldout_elpd", "heldout_se", "better_tests", "channels"}``: *passes* when the held-out log
     score of the two-effect model beats the re-formed one by more than :data:`SECOND_EFFECT_SE` standard
-    errors of the paired per-test difference, in at least half of the tests (folds), and neither channel
+    errors of the paired per-test difference (and by more than
+    :data:`rollaway.identify.ambiguity.SMALL_ELPD`), in at least half of the tests (folds), and neither channel
     (drum temperature, torque) predicts worse beyond :data:`rollaway.identify.ambiguity.HELDOUT_SE` of its
     own standard errors."""
     from rollaway.effects import get_effect
-    from rollaway.identify.ambiguity import HELDOUT_SE
+    from rollaway.identify.ambiguity import HELDOUT_SE, SMALL_ELPD
     from rollaway.identify.shape import covariate_of, flexible_effect, shape_hook
     if len(chosen) != 1 or two.jacobian is None:
         return None
@@ -294,5 +295,5 @@ def beyond_reform(data, params, chosen: list[str], current: FitResult, two: FitR
     better = int((total > 0).sum())
     out.update(heldout_elpd=float(total.sum()), heldout_se=se, reform_effect=flex.name, better_tests=better,
                tests=int(total.size),
-               passes=bool(ok and total.sum() > SECOND_EFFECT_SE * se and 2 * better >= total.size))
+               passes=bool(ok and total.sum() > max(SECOND_EFFECT_SE * se, SMALL_ELPD) and 2 * better >= total.size))
     return out
