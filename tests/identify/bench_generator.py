@@ -7,7 +7,8 @@ displacement, eq. (16a/b) clamp force, eqs. (18)–(21) self-energising, eq. (17
 
 Hidden effects come in three kinds (see ``EFFECTS``): the catalogue's physics in the
 catalogue's form ("exact"), the catalogue's physics in other forms ("other": friction
-quadratic in T, fade above a temperature, a sigmoid modulus drop, creep as a power law), and
+quadratic in T, fade above a temperature, a sigmoid modulus drop, creep as a power law, cable
+creep logarithmic in time), and
 physics the catalogue lacks ("outside": a ratchet step, a periodic disturbance).  Sampling
 every 1, 5 or 15 min or irregular (each test its own grid), Student-t noise (heavy tails),
 T_0 spread over 100–300 °C, one direction or both.
@@ -36,6 +37,7 @@ EFFECTS = {
     "friction_fade_above": ("other", "friction_temperature"),
     "modulus_sigmoid": ("other", "modulus_temperature"),
     "creep_power_law": ("other", "lining_creep"),
+    "cable_log": ("other", "cable_relaxation"),
     "ratchet_step": ("outside", None),
     "periodic_disturbance": ("outside", None),
 }
@@ -116,6 +118,8 @@ def _torque(p, u6_slope, u6_offset, F, t, t0, temp, amb, dirs, e, mu):
     u6 = u6_slope * F + u6_offset                               # eq. (24)
     if "cable_exponential" in e:
         u6 = u6 - 8e-6 * (1 - np.exp(-t / 600.0))
+    if "cable_log" in e:                                        # logarithmic creep of the cable (no end value)
+        u6 = u6 - 1.2e-6 * np.log1p(t / 120.0)
     if "ratchet_step" in e:
         u6 = u6 - 7e-6 * (t >= 1650.0)
     e_l = np.full_like(t, p.lining_modulus_Pa)

@@ -11,7 +11,7 @@ import pytest
 from rollaway.identify.calibrate import calibrate
 from rollaway.identify.diagnose import diagnose
 from tests.identify.bench_generator import EFFECTS, SAMPLING, generate
-from tests.identify.validate_diagnose import clean, coverage, kwargs_for
+from tests.identify.validate_diagnose import clean, coverage, intervals, kwargs_for
 
 SLOW = pytest.mark.skipif(not os.environ.get("ROLLAWAY_SLOW"), reason="set ROLLAWAY_SLOW=1 (about 2 minutes)")
 
@@ -34,6 +34,19 @@ def test_95_percent_intervals_cover_90_to_98_percent_over_100_seeds():
     for scheme, r in coverage(100).items():
         for name in ("mu_drum", "heat_transfer_W_m2K", "initial_temp_C"):
             assert 0.90 <= r[name] <= 0.98, (scheme, name, r)
+
+
+def test_diagnose_intervals_of_mu_and_h_cover_on_a_few_clean_sets():
+    """The intervals diagnose reports (brake parameters held at assumed values and autocorrelation counted):
+    6 clean 5-min sets, half with their own eq. (24) law; the previous release covered μ_d in 0.75 of them."""
+    r = intervals(6, ("5min",))["5min"]
+    assert r["mu_drum"] >= 5 / 6 and r["heat_transfer_W_m2K"] >= 5 / 6, r
+
+
+@SLOW
+def test_diagnose_intervals_cover_at_5min_1min_and_10Hz():
+    for scheme, r in intervals(20).items():
+        assert r["mu_drum"] >= 0.9 and r["heat_transfer_W_m2K"] >= 0.9, (scheme, r)
 
 
 # What the calibrated drum reproduces exactly: a gap is a thicker lining (eq. 16b), the drum's own

@@ -135,3 +135,14 @@ def test_saved_model_keeps_the_predictive_record_and_bad_tables_are_one_line_err
         validate({"model_eror_rel_sd": 0.1}, "m.toml")
     with pytest.raises(UserError, match="does not exist"):
         validate({"alternatives": [{"weight": 0.2, "file": "gone.toml"}]}, "m.toml", tmp_path)
+
+
+@pytest.mark.skipif(not os.environ.get("ROLLAWAY_SLOW"), reason="24 campaigns (~4 min); set ROLLAWAY_SLOW=1")
+def test_bands_beyond_the_tested_forces_temperatures_and_direction_cover():
+    """tests/uncertainty/band_questions.py at 1-min sampling: 135 N and 450 N after tests at 180–360 N, T_0 280 °C
+    after ≤ 250 °C, the untested direction; ≥ 0.9 overall, ≥ 0.85 per question, no band wholly on the wrong side."""
+    from tests.uncertainty.band_questions import QUESTIONS, campaign, summary
+    s = summary([r for i in range(24) for r in campaign(i, sampling="1min")])
+    assert s["coverage"] >= 0.9 and s["confident_wrong"] == 0, s
+    for q in QUESTIONS:
+        assert s[q]["coverage"] >= 0.85, (q, s[q])

@@ -23,19 +23,21 @@ from dataclasses import dataclass, field
 import numpy as np
 
 from rollaway.effects import available_effects, get_effect
+from rollaway.identify.ambiguity import rivals, tell_apart, verdict_line
 from rollaway.identify.calibrate import FitResult, calibrate, evaluate
 from rollaway.identify.coarse import MAX_WINDOW_S, coarsen
 from rollaway.identify.drum import DrumCalibration, calibrate_drum, predictive_covariance, recheck
 from rollaway.identify.export import CalibratedModelMixin
 from rollaway.identify.fitting import single_blas_thread
+from rollaway.identify.intervals import covariance_variances, ess_inflation, mixture_variances, restate
 from rollaway.bench.measurements import Measurements
 from rollaway.bench.noise import Noise, noise_estimate, sample_sigma
-from rollaway.identify.residuals import association, trend_words
-from rollaway.identify.selection import (BIC_THRESHOLD, Candidate, cv_score, eliminate, exchange, folds, forward_step,
-                                         has_per_test, per_test_signature, structure, weighted_chi2)
+from rollaway.identify.diagnose_words import describe_residual, score_text, no_candidate_words, noise_words, structure_words
+from rollaway.identify.selection import (BIC_THRESHOLD, Candidate, beyond_reform, cv_score, eliminate, exchange, folds,
+                                         forward_step, has_per_test, per_test_signature, structure, weighted_chi2)
 from rollaway.jsonsafe import to_jsonable
+from rollaway.uncertainty.bands import validity
 
-INDISTINGUISHABLE_BIC = 6.0  # candidates within this ΔBIC of the best cannot be told apart
 MAX_EFFECTS = 2              # forward selection stops after this many effects (a third rarely survives CV)
 PARTIAL_SHARE = 0.5          # "explains most of the baseline's excess error"
 
@@ -65,6 +67,7 @@ class Diagnosis(CalibratedModelMixin):
     steps: list[dict] = field(default_factory=list)       # forward-selection log
     shape: dict | None = None                              # flexible form of a "partial" effect
     drum: DrumCalibration | None = None                    # which brake parameters the data identify
+    alternatives: list[dict] = field(default_factory=list)  # effect sets the data cannot rule out (ambiguity.py)
 
     def as_dict(self) -> dict:
         def rm(f):
@@ -77,7 +80,9 @@ class Diagnosis(CalibratedModelMixin):
                 "paper": {"rmse_torque_Nm": self.paper.rmse_torque_Nm, "rmse_temp_C": self.paper.rmse_temp_C},
                 "baseline": {**rm(self.baseline), "cv_score": self.baseline_cv},
                 "candidates": [c.as_dict() for c in self.candidates],
-                "verdict": self.verdict, "effects": self.effects,
+                "verdict": self.verdict, "verdict_line": verdict_line(self.verdict, self.alternatives),
+                "alternatives": [{k: v for k, v in a.items() if k != "fit"} for a in self.alternatives],
+                "effects": self.effects,
                 "indistinguishable_from": self.indistinguishable_from,
                 "refined": {"effects": self.refined.effects, **rm(self.refined)},
                 "remaining_structure": self.remaining_structure, "structure": self.structure,
@@ -96,16 +101,16 @@ class Diagnosis(CalibratedModelMixin):
 
     def summary(self) -> str:
         forms = ", ".join(f"{e['effect']} ({e['form']})" for e in self.effects)
-        lines = [f"verdict: {self.verdict}" + (f"   effects: {forms}" if len(self.effects) > 1 or
+        lines = [f"verdict: {verdict_line(self.verdict, self.alternatives)}" + (f"   effects: {forms}" if len(self.effects) > 1 or
                                                 any(e["form"] != "exact" for e in self.effects) else "")]
         lines += [f"  {w}" for w in self.evidence]
         lines.append("")
         lines.append(f"{'candidate (step 1)':<28}{'ΔBIC':>9}{'torque RMSE':>13}{'temp RMSE':>11}{'CV score':>10}")
         lines.append(f"{'(baseline)':<28}{0.0:>9.1f}{self.baseline.rmse_torque_Nm:>13.3g}"
-                     f"{self.baseline.rmse_temp_C:>11.3g}{_f(self.baseline_cv):>10}")
+                     f"{self.baseline.rmse_temp_C:>11.3g}{score_text(self.baseline_cv):>10}")
         for c in self.candidates:
             lines.append(f"{c.effect:<28}{c.delta_bic:>9.1f}{c.fit.rmse_torque_Nm:>13.3g}{c.fit.rmse_temp_C:>11.3g}"
-                         f"{_f(c.cv_score):>10}")
+                         f"{score_text(c.cv_score):>10}")
         if self.drum is not None:
             lines += ["", self.drum.report()]
         lines.append("")
@@ -132,10 +137,6 @@ class Diagnosis(CalibratedModelMixin):
         return diagnose(data)
 
 
-def _f(x):
-    return "–" if x is None else f"{x:.1f}"
-
-
 # -- noise ----------------------------------------------------------------------------------
 def channel_noise(data: Measurements, fit: FitResult, noise_torque_Nm=None, noise_temp_C=None) -> tuple[Noise, Noise]:
     """Noise of both channels: the instrument's figures where given, else the model-free estimate."""
@@ -143,17 +144,6 @@ def channel_noise(data: Measurements, fit: FitResult, noise_torque_Nm=None, nois
     nq = Noise.instrument(noise_torque_Nm) if noise_torque_Nm else noise_estimate(data, data.torque_Nm, tau, True)
     nt = Noise.instrument(noise_temp_C) if noise_temp_C else noise_estimate(data, data.drum_temp_C, tau)
     return nq, nt
-
-
-def _noise_words(name: str, n: Noise, unit: str, option: str) -> str:
-    if n.source == "instrument":
-        return f"{name} σ = {n.sigma:.3g} {unit} (instrument figure, {option})"
-    rel = f" = √({n.absolute:.3g}² + ({n.relative:.2%}·{name})²)" if n.relative > 0 else ""
-    text = f"{name} σ ≈ {n.sigma:.3g} {unit}{rel} (local degree-{n.degree} pseudo-residuals, {n.dof:.0f} dof)"
-    if not n.reliable:
-        text += (f" — NOT RELIABLE: {n.note}; the structure checks may miss remaining structure — give the "
-                 f"instrument's figure with {option}")
-    return text
 
 
 # -- the decision ---------------------------------------------------------------------------
@@ -182,14 +172,14 @@ def diagnose(data: Measurements, params=None, effects=None, *, noise_torque_Nm: 
     params = drum.plan                                     # every later fit frees what the data identify
     base = drum.fit
     base_struct = structure(base, nq, nt)
-    ev = [f"Noise: {_noise_words('torque', nq, 'N·m', '--noise-torque-Nm')}; "
-          f"{_noise_words('drum temperature', nt, '°C', '--noise-temp-C')}.",
+    ev = [f"Noise: {noise_words('torque', nq, 'N·m', '--noise-torque-Nm')}; "
+          f"{noise_words('drum temperature', nt, '°C', '--noise-temp-C')}.",
           f"Each test's start temperature T_0 is fitted with the rest (t = 0 readings are measurements, "
           f"not exact values).",
           f"Paper defaults: torque RMSE {paper.rmse_torque_Nm:.3g} N·m, temperature RMSE {paper.rmse_temp_C:.3g} °C. "
           f"Calibrated drum ({', '.join(f'{n} = {base.values[n]:.4g}' for n in drum.free) or 'nothing freed'}): "
           f"{base.rmse_torque_Nm:.3g} N·m and {base.rmse_temp_C:.3g} °C; "
-          + _describe_residual(base, "torque") + "; " + _describe_residual(base, "temperature") + "."]
+          + describe_residual(base, "torque") + "; " + describe_residual(base, "temperature") + "."]
     current, chosen, steps, fits = base, [], [], []
     first_cands, base_cv, indist, struct = [], None, [], base_struct
     for step in range(1, max_effects + 1):
@@ -206,12 +196,9 @@ def diagnose(data: Measurements, params=None, effects=None, *, noise_torque_Nm: 
                           "delta_bic": cands[0].delta_bic if cands else None,
                           "cv_score": strong[0].cv_score if strong else None, "current_cv": cur_cv})
             if step == 1:
-                ev.append(_no_candidate_words(cands, strong, cur_cv))
+                ev.append(no_candidate_words(cands, strong, cur_cv))
             break
         best = passing[0]
-        if step == 1:
-            indist = [c.effect for c in cands if c is not best and c.delta_bic - best.delta_bic < INDISTINGUISHABLE_BIC
-                      and c.delta_bic < BIC_THRESHOLD]
         chosen.append(best.effect)
         struct = structure(best.fit, nq, nt)
         steps.append({"step": step, "added": best.effect, "delta_bic": best.delta_bic, "cv_score": best.cv_score,
@@ -234,20 +221,19 @@ def diagnose(data: Measurements, params=None, effects=None, *, noise_torque_Nm: 
             steps.append({"step": "exchange", "swaps": swaps})
             ev.append("Exchange step: " + "; ".join(f"{a} replaced by {b} (BIC {d:+.1f})" for a, b, d in swaps)
                       + " — an effect picked early had absorbed part of a later one's signature.")
+    if len(chosen) == 2:
+        chosen, current, struct, fits = _own_evidence(data, params, chosen, current, struct, fits, nq, nt, steps, ev)
     refined = current
     selected = [{"effect": e, "form": "exact"} for e in chosen]
     shape = None
     if not chosen:
         verdict, remaining, struct = "none", base_struct["structured"], base_struct
-        ev.append(f"The baseline residual is structured ({_structure_words(base_struct)}) but no catalogue effect "
+        ev.append(f"The baseline residual is structured ({structure_words(base_struct)}) but no catalogue effect "
                   f"explains it: an unknown effect remains." if remaining else
                   "The baseline residual is consistent with noise: no missing effect is detected.")
     elif not struct["structured"]:
         verdict, remaining = chosen[0], False
-        if indist:
-            ev.append(f"Indistinguishable on these data (within ΔBIC {INDISTINGUISHABLE_BIC:g}): " + ", ".join(indist)
-                      + "; more tests (other T_0, hand forces, longer holds) would separate them.")
-        ev.append(f"The refined residual is consistent with noise ({_structure_words(struct)}).")
+        ev.append(f"The refined residual is consistent with noise ({structure_words(struct)}).")
     else:
         remaining = True
         part = None
@@ -260,7 +246,7 @@ def diagnose(data: Measurements, params=None, effects=None, *, noise_torque_Nm: 
         if part is None:
             verdict, selected, indist = "none", [], []
             ev.append(f"But the residual of baseline + {' + '.join(chosen)} is still structured "
-                      f"({_structure_words(struct)}), and no flexible version of these effects removes it: none "
+                      f"({structure_words(struct)}), and no flexible version of these effects removes it: none "
                       f"of the catalogue explains the data.  An effect outside the catalogue remains — write it "
                       f"as a plugin and refit.")
         else:
@@ -275,28 +261,78 @@ def diagnose(data: Measurements, params=None, effects=None, *, noise_torque_Nm: 
                     e["explained_share"] = share
             verdict = chosen[0]
             ev.append(f"{name} explains {share:.0%} of the baseline's excess error but its catalogue form leaves "
-                      f"structure ({_structure_words(struct)}); a flexible version of its {shape['hook']} hook "
+                      f"structure ({structure_words(struct)}); a flexible version of its {shape['hook']} hook "
                       f"(linear spline in {shape['covariate']}) leaves none: form \"partial\" — the data want "
                       f"the shape shown (write it as a plugin)."
                       + (f"  {', '.join(dropped)} only absorbed part of this form mismatch and is not kept."
                          if dropped else ""))
     refined = recheck(drum, data, refined, [e["effect"] for e in selected]) if selected else refined
+    rivalry = _rivals(selected, first_cands, base_cv, validity(full), nq)
+    indist = [" + ".join(a["effects"]) for a in rivalry]
+    for a in rivalry:
+        ev.append(f"{verdict} or {' + '.join(a['effects'])}: these data cannot tell them apart — {a['why']}; "
+                  f"{a['tell_apart']['words']}.")
     misfit = remaining or any(e["form"] != "exact" for e in selected)
     pool = [base] + [c.fit for c in first_cands]
     if data is not full:                                  # the chosen model, refitted on every row
-        _predictive(data, refined, pool, len(selected), drum, misfit)
+        _predictive(data, refined, pool, len(selected), drum, misfit, [a["fit"] for a in rivalry])
         alts, pool = refined.fit_info.get("alternatives", []), []
         refined = calibrate(full, refined.effects, params, start=refined.values)
         refined.fit_info["alternatives"] = alts
         ev.append(f"Selection ran on {len(data)} rows (consecutive rows of each test merged, windows ≤ "
                   f"{MAX_WINDOW_S:g} s); the chosen model was refitted on all {len(full)} rows.")
         data = full
+    refined.covariance = predictive_covariance(refined, drum.fixed_priors(), ess_inflation(refined))
+    _predictive(data, refined, pool, len(selected), drum, misfit, [a["fit"] for a in rivalry])
+    alts = refined.fit_info.get("alternatives") or []
+    restate(refined, mixture_variances(refined, alts) or covariance_variances(refined))
     drum.update(refined)
-    refined.covariance = predictive_covariance(refined, drum.fixed_priors())
     refined.fit_info["calibration"] = drum.record()
-    _predictive(data, refined, pool, len(selected), drum, misfit)
-    return Diagnosis(data, paper, base, nq, nt, first_cands, verdict, indist if verdict != "none" else [], refined,
-                     remaining, struct, base_cv, ev, selected, steps, shape, drum)
+    ev.append(_interval_words(refined, drum, alts))
+    return Diagnosis(data, paper, base, nq, nt, first_cands, verdict, indist, refined,
+                     remaining, struct, base_cv, ev, selected, steps, shape, drum, rivalry)
+
+
+def _own_evidence(data, params, chosen, current, struct, fits, nq, nt, steps, ev):
+    """Keep the second of two selected effects only if it predicts held-out tests better than the first
+    re-formed (:func:`rollaway.identify.selection.beyond_reform`); else drop it and keep the first alone."""
+    own = beyond_reform(data, params, chosen[:1], current, current)
+    if own is None:
+        return chosen, current, struct, fits
+    steps.append({"step": "own evidence", "effect": chosen[1], "kept": own["passes"], "beyond_reform": own})
+    if own["passes"]:
+        return chosen, current, struct, fits
+    first = fits[0] if fits and fits[0] is not None and fits[0].effects == chosen[:1] else \
+        calibrate(data, chosen[:1], params, start=current.values)
+    ev.append(f"{chosen[1]} lowers BIC and predicts held-out tests better beside {chosen[0]}, but not beyond "
+              f"{chosen[0]} re-formed (its hook as a linear spline, no second effect): held-out log score "
+              f"{own['heldout_elpd']:+.1f} ± {own['heldout_se']:.1f}, better in {own['better_tests']} of "
+              f"{own['tests']} tests — a partner that only absorbs the first effect's form mismatch; not named.")
+    return chosen[:1], first, structure(first, nq, nt), [first]
+
+
+def _interval_words(fit: FitResult, drum: DrumCalibration, alts) -> str:
+    k = ess_inflation(fit)
+    fixed = sorted(drum.fixed_priors())
+    return ("Parameter intervals count " + "; ".join(filter(None, [
+        "autocorrelated residuals (variance × " + ", ".join(f"{v:.2g} {ch}" for ch, v in k.items()) + ")",
+        f"the assumed spread of {', '.join(fixed)} (held, not known)" if fixed else "",
+        f"{len(alts)} competing effect set{'s' if len(alts) > 1 else ''} (mixture)" if alts else ""]))
+        + " (rollaway.identify.intervals).")
+
+
+def _rivals(selected: list[dict], first: list[Candidate], base_cv, tested: dict, nq: Noise) -> list[dict]:
+    """The one-effect sets the data do not rule out against a one-effect verdict, each with the test that would
+    tell it from the verdict (:mod:`rollaway.identify.ambiguity`)."""
+    if len(selected) != 1 or base_cv is None:
+        return []
+    best = next((c for c in first if c.effect == selected[0]["effect"]), None)
+    if best is None:
+        return []
+    out = rivals(best, [c for c in first if c.cv_score is not None and c.cv_score < base_cv], BIC_THRESHOLD)
+    for a in out:
+        a["tell_apart"] = tell_apart(best.fit, a["fit"], tested, nq.sigma)
+    return out
 
 
 def _partial(data, params, base: FitResult, refined: FitResult, chosen: list[str], nq: Noise, nt: Noise):
@@ -325,12 +361,13 @@ def _partial(data, params, base: FitResult, refined: FitResult, chosen: list[str
 
 
 def _predictive(data, refined: FitResult, pool: list[FitResult], n_effects: int, drum: DrumCalibration,
-                misfit: bool = False) -> None:
+                misfit: bool = False, keep=()) -> None:
     """Attach the predictive record (model error, tested range) and the competing effect sets with their
     weights to *refined* (``fit_info``), for the saved model (:mod:`rollaway.uncertainty.bands`).  *misfit*:
     the saved model's form is known to leave structure (a "partial" effect, or structure remaining):
-    its model error is widened by :data:`rollaway.uncertainty.bands.MISFIT_INFLATION`."""
-    from rollaway.uncertainty.bands import COMPETING_BIC, alternatives, model_error, validity
+    its model error is widened by :data:`rollaway.uncertainty.bands.MISFIT_INFLATION`.  *keep*: fits the data
+    cannot tell from *refined* (named beside the verdict): always among the alternatives."""
+    from rollaway.uncertainty.bands import COMPETING_BIC, alternatives, model_error
     from rollaway.model.predictive_record import record
     val = validity(data)
     refined.fit_info["predictive"] = record(model_error(refined, misfit), val)
@@ -338,12 +375,12 @@ def _predictive(data, refined: FitResult, pool: list[FitResult], n_effects: int,
         return
     comp = [f for f in pool if f is not refined and f.jacobian is not None and len(f.effects) <= 1
             and f.bic - refined.bic < COMPETING_BIC] if n_effects <= 1 else []
-    mix = alternatives(refined, comp)
+    mix = alternatives(refined, comp + [f for f in keep if all(f is not g for g in comp)], keep=keep)
     alts = []
     for w, f in mix:
         if f is refined:
             continue
-        f.covariance = predictive_covariance(f, drum.fixed_priors())
+        f.covariance = predictive_covariance(f, drum.fixed_priors(), ess_inflation(f))
         f.fit_info["predictive"] = record(model_error(f), val)
         f.fit_info["calibration"] = drum.record()
         alts.append((w, f))
@@ -353,36 +390,6 @@ def _predictive(data, refined: FitResult, pool: list[FitResult], n_effects: int,
 def _test_offsets(fit: FitResult, nq: Noise) -> bool:
     from rollaway.identify.residuals import STRUCTURE_P
     return structure(fit, nq, nq)["torque"]["test_offsets"]["p"] < STRUCTURE_P
-
-
-def _no_candidate_words(cands, strong, cur_cv) -> str:
-    if strong:
-        return (f"{strong[0].effect} lowers BIC by {-strong[0].delta_bic:.1f} but does not predict held-out tests "
-                f"better than the baseline (cross-validation {strong[0].cv_score:.1f} vs {cur_cv:.1f}); not accepted.")
-    if cands:
-        return (f"No candidate lowers BIC by more than {-BIC_THRESHOLD:g} (best: {cands[0].effect}, "
-                f"ΔBIC {cands[0].delta_bic:+.1f}).")
-    return "No candidates were given."
-
-
-def _describe_residual(fit: FitResult, channel: str) -> str:
-    rt, rq = fit.residuals()
-    r = rq if channel == "torque" else rt
-    assoc = association(fit.data, r, fit.prediction.drum_temp_C)
-    name, share = assoc[0]
-    words = trend_words(fit.data, r, fit.prediction.drum_temp_C, name)
-    return (f"the {channel} residual followed {name} most ({share:.0%} of its variance explained by {name} "
-            f"alone; it {words})")
-
-
-def _structure_words(s: dict) -> str:
-    parts = []
-    for ch in ("torque", "temperature"):
-        t = s[ch]
-        parts.append(f"{ch}: variance {t['excess_variance']['ratio']:.2f}× noise (p = {t['excess_variance']['p']:.2g}), "
-                     f"lag-1 autocorrelation {t['autocorrelation']['lag1']:+.2f} (p = {t['autocorrelation']['p']:.2g}), "
-                     f"test offsets p = {t['test_offsets']['p']:.2g}, time profile p = {t['time_profile']['p']:.2g}")
-    return "; ".join(parts)
 
 
 __all__ = ["Candidate", "Diagnosis", "diagnose", "cv_score", "structure", "channel_noise", "folds"]

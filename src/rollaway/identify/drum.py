@@ -292,16 +292,19 @@ def _weakest(fit: FitResult, names: list[str]):
     return list(s), drop, confounded
 
 
-def predictive_covariance(fit: FitResult, priors: dict[str, float]) -> Covariance | None:
+def predictive_covariance(fit: FitResult, priors: dict[str, float], inflation: dict | None = None) -> Covariance | None:
     """Covariance of the fit's parameters and of the brake parameters it held fixed (*priors*: their
-    assumed spreads), from the data's information plus a Gaussian prior on the fixed ones."""
+    assumed spreads), from the data's information plus a Gaussian prior on the fixed ones.  *inflation*:
+    channel → factor on that channel's variance factor (autocorrelated residuals,
+    :func:`rollaway.identify.intervals.ess_inflation`)."""
     names = list(fit.names) + [n for n in priors if n not in fit.names]
     if not names:
         return None
     jac = jacobian_at(fit, names)
     n = len(fit.data)
-    phi = np.concatenate([np.full(n, max(fit.variance_factor.get("temperature", 1.0), 1e-300)),
-                          np.full(n, max(fit.variance_factor.get("torque", 1.0), 1e-300))])
+    k = inflation or {}
+    phi = np.concatenate([np.full(n, max(fit.variance_factor.get("temperature", 1.0) * k.get("temperature", 1.0), 1e-300)),
+                          np.full(n, max(fit.variance_factor.get("torque", 1.0) * k.get("torque", 1.0), 1e-300))])
     jw = jac / np.sqrt(phi)[:, None]
     info = jw.T @ jw
     prior = np.array([1.0 / priors[m] ** 2 if m in priors else 0.0 for m in names])

@@ -276,11 +276,12 @@ def diagnosis_report(diag, path) -> None:
     from rollaway.identify.report_figures import ladder_figure, residual_figure, signals_figure
     noise = _noise(diag)
     verdict = getattr(diag, "verdict", "none")
-    indist = getattr(diag, "indistinguishable_from", []) or []
-    if verdict != "none":
-        head = (f"Missing effect found: {verdict}"
-                + (f" (cannot be told apart from {', '.join(indist)} on these data)" if indist else "")
-                + ". With it the residual is consistent with the measurement noise.")
+    alts = getattr(diag, "alternatives", []) or []
+    if verdict != "none" and alts:
+        from rollaway.identify.ambiguity import verdict_line
+        head = f"Missing effect: {verdict_line(verdict, alts)}."
+    elif verdict != "none":
+        head = f"Missing effect found: {verdict}. With it the residual is consistent with the measurement noise."
     elif getattr(diag, "remaining_structure", False):
         head = ("No effect of the catalogue explains the data: the residual still has structure. "
                 "An effect outside the catalogue (or several together) is missing.")

@@ -3,8 +3,8 @@
 When a catalogue effect explains most of the misfit but leaves structure, its *physics* (which
 quantity it changes) is probably right and its *form* wrong.  :func:`flexible_effect` builds an
 effect that changes the same quantity by a factor ``1 + g(x)``, g a linear spline in the
-effect's covariate x (time, lining or drum temperature, hand force) with equally spaced
-knots over the covariate's range and g = 0 at the lowest knot — no functional form assumed.  Fitting it
+effect's covariate x (time, lining or drum temperature, hand force) with knots over the
+covariate's range (:func:`spline_knots`) and g = 0 at the lowest knot — no functional form assumed.  Fitting it
 shows what the data want; :func:`shape_curves` evaluates both factors on a grid for a figure.
 """
 from __future__ import annotations
@@ -49,6 +49,24 @@ def spline_factor(x, knots, coef) -> np.ndarray:
     return 1.0 + g
 
 
+def spline_knots(x: np.ndarray, covariate: str) -> np.ndarray:
+    """At most KNOTS + 1 knots over the covariate's range: equally spaced, except in time, where they are
+    spaced geometrically from the first sample after the start (at least 1 % of the span): creep and
+    relaxation change fastest at the start of a hold, and equal 450 s segments of an hour cannot follow a
+    logarithmic loss.  A time knot that would leave a segment without samples is skipped."""
+    lo, hi = float(np.min(x)), float(np.max(x))
+    if not covariate == "time_s" or hi <= lo:
+        return np.unique(np.linspace(lo, hi, KNOTS + 1))
+    xs = np.unique(x)
+    knots = [lo]
+    first = max(float(xs[1] - lo) if xs.size > 1 else 0.0, 0.01 * (hi - lo))
+    for k in lo + np.geomspace(first, hi - lo, KNOTS):
+        if np.any((xs > knots[-1]) & (xs <= k)):        # every segment holds samples (else its slope is free)
+            knots.append(float(k))
+    knots[-1] = hi
+    return np.unique(knots)
+
+
 def flexible_effect(effect: Effect, covariate_values: np.ndarray) -> type[Effect] | None:
     """An Effect class changing *effect*'s quantity by a spline factor of its covariate."""
     found = shape_hook(effect)
@@ -56,7 +74,7 @@ def flexible_effect(effect: Effect, covariate_values: np.ndarray) -> type[Effect
         return None
     hook, cov = found
     x = np.asarray(covariate_values, float)
-    knots = np.unique(np.linspace(float(np.min(x)), float(np.max(x)), KNOTS + 1))
+    knots = spline_knots(x, cov)
     if len(knots) < 3:
         return None
     n = len(knots) - 1

@@ -6,6 +6,7 @@ draws)::
 
     [predictive]
     model_error_rel_sd = 0.006         # leave-one-test-out relative torque error where margins are decided
+    model_error_floor_rel_sd = 0.004   # the noise's resolution of that error: the least used beyond the tested range
     model_error_dof = 7                # tests − 1 (the error is drawn from a Student-t)
     tested_hand_force_N = [190.0, 350.0]
     tested_initial_temp_C = [104.2, 296.0]
@@ -22,14 +23,15 @@ from pathlib import Path
 
 from rollaway.errors import UserError, suggest
 
-KEYS = ("model_error_rel_sd", "model_error_dof", "model_error_tests", "tested_hand_force_N", "tested_initial_temp_C",
-        "tested_duration_s", "tested_directions", "alternatives")
+KEYS = ("model_error_rel_sd", "model_error_floor_rel_sd", "model_error_dof", "model_error_tests",
+        "tested_hand_force_N", "tested_initial_temp_C", "tested_duration_s", "tested_directions", "alternatives")
 
 
 def record(model_error: dict, validity: dict, alternatives=()) -> dict:
     """The ``[predictive]`` table from :func:`rollaway.uncertainty.bands.model_error` and ``validity``."""
     out = {"model_error_rel_sd": float(model_error["rel_sd"]), "model_error_dof": int(model_error["dof"]),
            "model_error_tests": int(model_error["tests"]),
+           "model_error_floor_rel_sd": float(model_error.get("floor_rel_sd", 0.0)),
            "tested_hand_force_N": list(validity["hand_force_N"]),
            "tested_initial_temp_C": list(validity["initial_temp_C"]),
            "tested_duration_s": float(validity["duration_s"]), "tested_directions": list(validity["directions"])}
@@ -46,7 +48,8 @@ def validate(table, where: str, base_dir: Path | None = None) -> dict:
         if key not in KEYS:
             raise UserError(f"{where}: unknown key 'predictive.{key}'{suggest(key, KEYS)}")
     out = dict(table)
-    for key, top in (("model_error_rel_sd", 10.0), ("tested_duration_s", math.inf)):
+    for key, top in (("model_error_rel_sd", 10.0), ("model_error_floor_rel_sd", 10.0),
+                     ("tested_duration_s", math.inf)):
         if key in out and not (_real(out[key]) and 0 <= out[key] <= top and math.isfinite(out[key])):
             raise UserError(f"{where}: key 'predictive.{key}' must be a number ≥ 0"
                             + (f" and ≤ {top:g} (a relative error of the torque)" if math.isfinite(top) else "")

@@ -14,9 +14,12 @@ question also depends on which effects were chosen and on how wrong the chosen f
   in its scores, Student-t in its use (a handful of tests cannot give a finite 90 % conformal
   quantile).  When the saved form is known to leave structure (an effect named "partial", or
   structure remaining), the held-out tests saw that misfit only in part: ``rel_sd`` is widened
-  (:data:`MISFIT_INFLATION`, assumed);
+  (:data:`MISFIT_INFLATION`, assumed).  ``floor_rel_sd`` is the resolution of those scores: the
+  relative error one test's noise alone gives where its margin is decided.  A model error below it
+  cannot be told from zero, so a question beyond the tested range never uses less;
 * **choice of effects** — competing effect sets the data cannot rule out (within
-  :data:`COMPETING_BIC` of the selected one) get pseudo-BMA weights from their leave-one-test-out
+  :data:`COMPETING_BIC` of the selected one, and always those named beside the verdict as
+  indistinguishable) get pseudo-BMA weights from their leave-one-test-out
   scores (Bayesian-bootstrap pseudo-BMA: w ∝ exp(−½·Σ score) averaged over Dirichlet reweightings
   of the tests; Yao et al. 2018, "Using stacking to average Bayesian predictive distributions",
   §3.1, with the Gaussian log score); draws are split among them;
@@ -69,15 +72,20 @@ def model_error(fit, misfit: bool = False) -> dict:
         noise.append(float(np.mean((d.torque_sigma_Nm[low] / level) ** 2) / low.size))
     s2 = np.asarray(scores) ** 2
     rel_sd = math.sqrt(max(float(np.mean(s2) - np.mean(noise)), 0.0)) if scores else 0.0
+    floor = math.sqrt(float(np.mean(noise))) if noise else 0.0
     if misfit:
         rel_sd *= MISFIT_INFLATION
     return {"rel_sd": rel_sd, "dof": max(len(scores) - 1, 1), "tests": len(scores),
-            "per_test": [float(x) for x in scores], "misfit": misfit}
+            "per_test": [float(x) for x in scores], "misfit": misfit, "floor_rel_sd": floor}
 
 
-def alternatives(selected, competitors: list) -> list[tuple[float, object]]:
-    """Pseudo-BMA weights of *selected* and its competitors (leave-one-test-out scores), heaviest first."""
-    pool = [selected] + [c for c in competitors if c is not selected and c.jacobian is not None and sized(c)]
+def alternatives(selected, competitors: list, keep=()) -> list[tuple[float, object]]:
+    """Pseudo-BMA weights of *selected* and its competitors (leave-one-test-out scores), heaviest first.
+    *keep*: competitors the data cannot tell from *selected* (named beside a verdict): never dropped — not
+    for their size, and not for a light weight (floored at :data:`MIN_WEIGHT`)."""
+    kept = {id(c) for c in keep}
+    pool = [selected] + [c for c in competitors if c is not selected and c.jacobian is not None
+                         and (sized(c) or id(c) in kept)]
     if len(pool) == 1 or selected.jacobian is None:
         return [(1.0, selected)]
     elpd = -0.5 * np.array([loto_scores(f) for f in pool])      # (models, tests) log scores
@@ -86,7 +94,9 @@ def alternatives(selected, competitors: list) -> list[tuple[float, object]]:
     z = elpd.shape[1] * alpha @ elpd.T                                           # (BOOTSTRAP, models)
     z -= z.max(axis=1, keepdims=True)
     w = (np.exp(z) / np.exp(z).sum(axis=1, keepdims=True)).mean(axis=0)
-    w = np.where(w / w.sum() >= MIN_WEIGHT, w, 0.0)
+    w = w / w.sum()
+    floor = np.array([id(f) in kept for f in pool])
+    w = np.where(floor, np.maximum(w, MIN_WEIGHT), np.where(w >= MIN_WEIGHT, w, 0.0))
     w = w / w.sum()
     out = [(float(wi), f) for wi, f in zip(w, pool) if wi > 0]
     return sorted(out, key=lambda t: -t[0])

@@ -145,7 +145,7 @@ def rollaway_risk(model: DrumModel, *, hand_force_N: float, grade_pct: float, di
     """
     from rollaway.hold import _effective, required_torque, tyre_adhesion_margin
     from rollaway.hold.numeric import Subset, first_slip_time
-    from rollaway.uncertainty.predictive import extrapolation, model_error_draws
+    from rollaway.uncertainty.predictive import extrapolation, model_error_draws, model_error_sd
 
     if not (isinstance(draws, (int, np.integer)) and 1 <= draws <= 1_000_000):
         raise UserError(f"--uncertainty {draws} must be a whole number of draws from 1 to 1000000, e.g. 1000")
@@ -194,7 +194,7 @@ def rollaway_risk(model: DrumModel, *, hand_force_N: float, grade_pct: float, di
     shares = {"parameters": min(v_par / total, 1.0), "choice_of_effects": max(v_mix - v_par, 0.0) / total,
               "model_error": max(v_all - v_mix, 0.0) / total} if v_all > 0 else {}
     detail = {"shares": shares, "flags": flags, "extrapolation_factor": factor,
-              "model_error_rel_sd": float(pred.get("model_error_rel_sd", 0.0)) * factor,
+              "model_error_rel_sd": model_error_sd(pred, factor),
               "models": [{"name": m.name, "weight": float(w), "draws": int(c)} for (w, m), c in zip(parts, counts)],
               "half_width": _half_width(least)}
     main = owner == 0

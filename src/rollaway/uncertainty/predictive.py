@@ -40,9 +40,19 @@ def extrapolation(pred: dict, *, hand_force_N: float, direction: str, initial_te
     return factor, flags
 
 
+def model_error_sd(pred: dict, factor: float) -> float:
+    """The relative torque error's scale for a question with extrapolation *factor* (see :func:`model_error_draws`)."""
+    sd = float(pred.get("model_error_rel_sd", 0.0))
+    if factor > 1.0:
+        sd = max(sd, float(pred.get("model_error_floor_rel_sd", 0.0)))
+    return sd * factor
+
+
 def model_error_draws(pred: dict, n: int, factor: float, rng: np.random.Generator) -> np.ndarray:
-    """n multiplicative torque errors ε (torque × (1 + ε)), Student-t with the record's dof, scaled by *factor*."""
-    sd = float(pred.get("model_error_rel_sd", 0.0)) * factor
+    """n multiplicative torque errors ε (torque × (1 + ε)), Student-t with the record's dof, scaled by *factor*.
+    Beyond the tested range (*factor* > 1) the error is at least the record's floor (the noise's resolution
+    of the held-out error: the data cannot show a smaller one) before it is scaled."""
+    sd = model_error_sd(pred, factor)
     if sd <= 0.0:
         return np.zeros(n)
     dof = max(int(pred.get("model_error_dof", 1)), 1)
@@ -50,4 +60,4 @@ def model_error_draws(pred: dict, n: int, factor: float, rng: np.random.Generato
     return np.clip(eps, -0.9, 9.0)       # a torque never changes sign through its model error
 
 
-__all__ = ["extrapolation", "model_error_draws", "record", "validate"]
+__all__ = ["extrapolation", "model_error_draws", "model_error_sd", "record", "validate"]

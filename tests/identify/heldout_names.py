@@ -1,0 +1,80 @@
+"""Held-out campaigns for the names ``diagnose`` gives: one hidden effect of every kind (the catalogue's
+form, other forms, none), other drums, random μ_d, h and tested hand forces, 1- or 5-min sampling,
+one direction in every third campaign.  Counts whether the truth is the verdict or one of its flagged
+alternatives, partner effects (a second effect named where one is hidden), structure and time.
+
+    PYTHONPATH=src python -m tests.identify.heldout_names --sets 60
+"""
+from __future__ import annotations
+
+import argparse
+import time
+
+import numpy as np
+
+from tests.identify.bench_generator import EFFECTS, OTHER_DRUMS, generate
+
+HIDDEN = [None] + [n for n, (k, _) in EFFECTS.items() if k in ("exact", "other") and n != "zero_offset"]
+EQUIVALENT = {"gap": {"none", "drum_radial_contraction"}}     # a gap is a thicker lining (eq. 16b)
+
+
+def campaign(i: int):
+    """(hidden effect or None, data) of held-out campaign *i*."""
+    rng = np.random.default_rng(9100 + i)
+    hidden = HIDDEN[i % len(HIDDEN)]
+    drums = [{}] + list(OTHER_DRUMS.values())
+    drum = drums[rng.integers(len(drums))]
+    lo = rng.uniform(150.0, 220.0)
+    forces = np.linspace(lo, lo + rng.uniform(120.0, 200.0), int(rng.integers(2, 5)))
+    kw = {"directions": (("downhill",), ("uphill",))[i % 2]} if i % 3 == 2 else {}
+    data = generate([hidden] if hidden else [], sampling=("1min", "5min")[i % 2], seed=9100 + i, drum=drum,
+                    mu=rng.uniform(0.3, 0.45), h=rng.uniform(25.0, 45.0), forces=forces, **kw)
+    return hidden, data
+
+
+def judge(hidden, d) -> dict:
+    """Right (verdict or a flagged alternative), partner named, structure, of one diagnosis."""
+    expect = {"none"} if hidden is None else ({EFFECTS[hidden][1]} | EQUIVALENT.get(hidden, set()))
+    alts = {e for a in getattr(d, "alternatives", []) for e in a["effects"]}
+    named = [e["effect"] for e in d.effects]
+    return {"right": d.verdict in expect, "right_or_alternative": d.verdict in expect or bool(alts & expect),
+            "partner": len(named) > 1, "ambiguous": bool(alts), "structure": bool(d.remaining_structure),
+            "verdict": d.verdict, "effects": named, "alternatives": sorted(alts)}
+
+
+def run(sets: int, start: int = 0) -> list[dict]:
+    from rollaway.identify.diagnose import diagnose
+    rows = []
+    for i in range(start, start + sets):
+        hidden, data = campaign(i)
+        t = time.perf_counter()
+        d = diagnose(data)
+        rows.append({"i": i, "hidden": hidden, "rows": len(data), "seconds": time.perf_counter() - t,
+                     **judge(hidden, d)})
+    return rows
+
+
+def summary(rows: list[dict]) -> dict:
+    n = len(rows)
+    sec = np.array([r["seconds"] for r in rows])
+    return {"sets": n, "right": sum(r["right"] for r in rows), "right_or_alternative":
+            sum(r["right_or_alternative"] for r in rows), "partner": sum(r["partner"] for r in rows),
+            "ambiguous": sum(r["ambiguous"] for r in rows), "structure": sum(r["structure"] for r in rows),
+            "seconds_median": float(np.median(sec)), "seconds_max": float(sec.max())}
+
+
+def main(argv=None):
+    ap = argparse.ArgumentParser(description=__doc__.splitlines()[0])
+    ap.add_argument("--sets", type=int, default=60)
+    ap.add_argument("--start", type=int, default=0)
+    a = ap.parse_args(argv)
+    rows = run(a.sets, a.start)
+    for r in rows:
+        if not r["right_or_alternative"] or r["partner"]:
+            print(f"  {r['i']}: {r['hidden']} → {r['verdict']} {r['effects']} alt {r['alternatives']} "
+                  f"structure={r['structure']}")
+    print(summary(rows))
+
+
+if __name__ == "__main__":
+    main()

@@ -1,0 +1,104 @@
+"""Road-margin bands at questions inside and beyond the bench's range, on held-out campaigns from
+tests/identify/bench_generator.py (other drums, hidden effects of every kind, random μ_d and h).
+
+Each campaign tests 3–4 hand forces over 180–360 N from T_0 100–250 °C (one direction in every third);
+the questions, facing uphill (or the untested direction), one occupant, an hour's hold:
+
+* ``inside``: 270 N from 200 °C;
+* ``force_low`` / ``force_high``: 135 N and 450 N (25 % of the lowest/highest tested force beyond them);
+* ``hotter``: 300 N from 280 °C (30 °C above the hottest tested T_0);
+* ``direction``: 270 N from 200 °C facing the direction that was not tested (one-direction campaigns).
+
+On each question's grade the truth's least brake margin m* is near 1; the 5–95 % band of the brake margin
+should hold it in ≥ 90 % of the questions.
+
+    PYTHONPATH=src python -m tests.uncertainty.band_questions --campaigns 30
+"""
+from __future__ import annotations
+
+import argparse
+
+import numpy as np
+from scipy.optimize import brentq
+
+from tests.identify.bench_generator import EFFECTS, OTHER_DRUMS, generate, true_torque
+
+GRID = np.linspace(0.0, 3600.0, 361)
+HIDDEN = [None] + [k for k, v in EFFECTS.items() if v[0] in ("exact", "other") and k != "zero_offset"]
+QUESTIONS = {"inside": (270.0, 200.0), "force_low": (135.0, 200.0), "force_high": (450.0, 200.0),
+             "hotter": (300.0, 280.0), "direction": (270.0, 200.0)}
+
+
+def campaign(i: int, draws: int = 300, sampling: str = "5min") -> list[dict]:
+    """The questions of held-out campaign *i*, each with the truth's least margin and the model's band."""
+    from rollaway.hold import required_torque
+    from rollaway.identify.diagnose import diagnose
+    from rollaway.uncertainty.draws import rollaway_risk
+    rng = np.random.default_rng(7700 + i)
+    hidden = HIDDEN[i % len(HIDDEN)]
+    effects = [hidden] if hidden else []
+    mu, h = rng.uniform(0.3, 0.45), rng.uniform(25.0, 45.0)
+    drums = list(OTHER_DRUMS.values())
+    drum = drums[rng.integers(len(drums))] if i % 2 else {}
+    one = i % 3 == 2
+    tested = ("downhill",) if one else ("downhill", "uphill")
+    data = generate(effects, sampling=sampling, seed=7700 + i, mu=mu, h=h, drum=drum, directions=tested,
+                    forces=np.linspace(180.0, 360.0, 3 + i % 2), t0_range=(100.0, 250.0))
+    model = diagnose(data).model
+    rows = []
+    for q, (force, t0) in QUESTIONS.items():
+        if (q == "direction") != one:
+            continue
+        direction = "uphill" if q == "direction" or not one else "downhill"
+
+        def truth(grade):
+            t_req = float(required_torque(model.params, grade, 1))
+            tq = true_torque(force, GRID, direction, drum=drum, mu=mu, h=h, t0=t0, effects=effects)
+            return float(np.min(2 * tq / t_req))
+        target = 1.0 + rng.uniform(-0.1, 0.1)
+        try:
+            grade = brentq(lambda g: truth(g) - target, 0.2, 80.0)
+        except ValueError:
+            continue
+        m_star = truth(grade)
+        risk = rollaway_risk(model, hand_force_N=force, grade_pct=grade, direction=direction, occupants=1,
+                             duration_s=3600.0, initial_temp_C=t0, draws=draws, seed=i)
+        p = risk.brake_margin_percentiles          # the truth is the brake's (the tyre limit is not hidden)
+        rows.append({"campaign": i, "hidden": hidden, "question": q, "m_star": m_star, "p5": p["p5"],
+                     "p95": p["p95"], "half_width": 0.5 * (p["p95"] - p["p5"]),
+                     "probability": risk.rollaway_probability, "covered": p["p5"] <= m_star <= p["p95"]})
+    return rows
+
+
+def confident_wrong(r: dict) -> bool:
+    """The whole 5–95 % brake-margin band on the wrong side of 1 (≥ 95 % sure of the wrong answer)."""
+    return (r["p5"] >= 1.0 > r["m_star"]) or (r["p95"] < 1.0 <= r["m_star"])
+
+
+def summary(rows: list[dict]) -> dict:
+    out = {"questions": len(rows), "coverage": float(np.mean([r["covered"] for r in rows])),
+           "half_width_median": float(np.median([r["half_width"] for r in rows])),
+           "confident_wrong": int(sum(confident_wrong(r) for r in rows))}
+    for q in QUESTIONS:
+        sub = [r for r in rows if r["question"] == q]
+        if sub:
+            out[q] = {"n": len(sub), "coverage": float(np.mean([r["covered"] for r in sub])),
+                      "half_width_median": float(np.median([r["half_width"] for r in sub]))}
+    return out
+
+
+def main(argv=None):
+    ap = argparse.ArgumentParser(description=__doc__.splitlines()[0])
+    ap.add_argument("--campaigns", type=int, default=30)
+    ap.add_argument("--sampling", default="5min")
+    a = ap.parse_args(argv)
+    rows = [r for i in range(a.campaigns) for r in campaign(i, sampling=a.sampling)]
+    for r in rows:
+        if not r["covered"]:
+            print(f"  miss {r['campaign']} {r['hidden']} {r['question']}: m* {r['m_star']:.3f} band "
+                  f"[{r['p5']:.3f}, {r['p95']:.3f}]")
+    print(summary(rows))
+
+
+if __name__ == "__main__":
+    main()
