@@ -32,6 +32,9 @@ rollaway hold --grade-pct 20 --hand-force-N 300 --occupants 1 --duration-s 3600 
 echo; echo "== 8. the calibrated drum for Simulink, Dymola, OpenModelica: an FMI 2.0 FMU that runs without rollaway"
 rollaway export-fmu --params out/calibrated.toml out/calibrated.fmu
 python -m fmpy validate out/calibrated.fmu
+echo; echo "== 9. a production fleet: roll-away rate in ppm with its interval, what drives it, the least hand force for 0.1 ppm"
+rollaway risk scenarios/populations/fmvss135-production.toml --sensitivity --design hand_force_N --target 1e-7 \
+  --chart out/fleet-risk.png --quiet
 echo
 echo "== done. What was written, and what to open:"
 echo "  renders/quickstart/hot-parking-rollaway.mp4   the car rolling away when the drum has cooled (open it)"
@@ -43,4 +46,5 @@ echo "  out/diagnose.html, out/calibrated.toml         the missing effect found 
 echo "  out/design-chart-calibrated.png                least hand force: paper model vs calibrated model (open it)"
 echo "  out/own-drum.txt, out/own-drum.toml            your own brake: the identifiability report; its calibrated model"
 echo "  out/calibrated.fmu                             the calibrated drum as an FMU (docs/how-to/fmu-export.md)"
+echo "  out/fleet-risk.png, out/fleet-risk-design.png  a fleet's drivers (Sobol indices) and rate against hand force"
 echo "  docs/model.md                                  the model, equation by equation"
