@@ -148,7 +148,11 @@ class Effect:
     def is_neutral(cls, v: dict[str, float]) -> bool:
         """True if the values *v* leave the chain unchanged (the effect can be skipped)."""
         params = [cls.parameter(cls.amplitude)] if cls.amplitude else cls.parameters
-        return all(np.all(np.asarray(v.get(p.name, p.neutral)) == p.neutral) for p in params)
+        for p in params:
+            x = v.get(p.name, p.neutral)
+            if not (x == p.neutral if type(x) is float else np.all(np.asarray(x) == p.neutral)):
+                return False
+        return True
 
     @classmethod
     def per_test_parameters(cls) -> list[str]:
