@@ -27,7 +27,7 @@ from scipy import optimize
 from threadpoolctl import threadpool_limits
 
 from rollaway.bench.measurements import Measurements
-from rollaway.identify.model import INITIAL_TEMP, BenchModel
+from rollaway.identify.model import INITIAL_TEMP, BenchModel, ambient_varies
 
 MAX_OUTER = 4
 MAX_ITERATIONS = 25          # Levenberg–Marquardt iterations per pass (a fit that needs more is degenerate)
@@ -74,6 +74,8 @@ class Problem:
         self.rows_test = np.concatenate([data.test_index, data.test_index])
         self.nfev = 0
         self.step = {f: 1e-4 * (model.bounds(f)[1] - model.bounds(f)[0]) for f in self.families}
+        batch = self.families and all(e.elementwise for e in model.effects) and not ambient_varies(data)
+        self.stacked = stack_copies(data, len(self.families) + 1) if batch else None
 
     def raw(self, vals: dict) -> np.ndarray:
         self.nfev += 1
@@ -83,15 +85,33 @@ class Problem:
                                 (p.torque_Nm - self.data.torque_Nm) * self.w_torque])
         return np.where(np.isfinite(r), r, 1e6)
 
+    def raw_stacked(self, sets: list[dict]) -> list[np.ndarray]:
+        """:meth:`raw` of several value sets that differ only in per-test arrays, in one evaluation of the
+        model on stacked copies of the data (each copy its own tests); elementwise, so the same numbers."""
+        self.nfev += len(sets)
+        data, n = self.stacked, len(self.data)
+        vals = {k: (np.concatenate([s[k] for s in sets]) if isinstance(x, np.ndarray) and x.ndim == 1 else x)
+                for k, x in sets[0].items()}
+        p = self.model.predict(data, vals)
+        out = []
+        for c in range(len(sets)):
+            with np.errstate(invalid="ignore"):
+                r = np.concatenate([(p.drum_temp_C[c * n:(c + 1) * n] - self.data.drum_temp_C) * self.w_temp,
+                                    (p.torque_Nm[c * n:(c + 1) * n] - self.data.torque_Nm) * self.w_torque])
+            out.append(np.where(np.isfinite(r), r, 1e6))
+        return out
+
     def profile(self, vals: dict):
         """Residual with the per-test families at their best values (one Gauss–Newton step)."""
-        r0 = self.raw(vals)
         if not self.families:
-            return r0, {}, [], None
-        grads = []
-        for f in self.families:
-            g = (self.raw({**vals, f: vals[f] + self.step[f]}) - r0) / self.step[f]
-            grads.append(g)
+            return self.raw(vals), {}, [], None
+        sets = [vals] + [{**vals, f: vals[f] + self.step[f]} for f in self.families]
+        if self.stacked is not None and all(np.ndim(vals[f]) == 1 for f in self.families):
+            rs = self.raw_stacked(sets)
+        else:
+            rs = [self.raw(v) for v in sets]
+        r0 = rs[0]
+        grads = [(r - r0) / self.step[f] for r, f in zip(rs[1:], self.families)]
         gm = np.stack(grads, axis=1)                       # rows × m
         nt, m = self.data.n_tests, len(self.families)
         normal = np.zeros((nt, m, m))
@@ -170,3 +190,14 @@ class Problem:
                 h = -h
             jac[:, i] = (self.profile({**vals, n: vals[n] + h})[0] - r0) / h * scale[i]
         return jac
+
+
+def stack_copies(data: Measurements, copies: int) -> Measurements:
+    """*copies* copies of *data* one after another, each with tests of its own (``"<id>#<copy>"``)."""
+    tile = (lambda a: None if a is None else np.tile(a, copies))  # noqa: E731
+    ids = np.array([f"{t}#{c}" for c in range(copies) for t in data.test_id.tolist()])
+    out = Measurements(test_id=ids, direction=tile(data.direction), hand_force_N=tile(data.hand_force_N),
+                       time_s=tile(data.time_s), drum_temp_C=tile(data.drum_temp_C), torque_Nm=tile(data.torque_Nm),
+                       ambient_C=tile(data.ambient_C), source=data.source)
+    out._ambient_varies = False
+    return out
