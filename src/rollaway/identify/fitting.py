@@ -73,6 +73,7 @@ class Problem:
         self.w_temp, self.w_torque = np.asarray(w_temp, float), np.asarray(w_torque, float)
         self.rows_test = np.concatenate([data.test_index, data.test_index])
         self.nfev = 0
+        self.bounds = {f: model.bounds(f) for f in self.families}
         self.step = {f: 1e-4 * (model.bounds(f)[1] - model.bounds(f)[0]) for f in self.families}
         batch = self.families and all(e.elementwise for e in model.effects) and not ambient_varies(data)
         self.stacked = stack_copies(data, len(self.families) + 1) if batch else None
@@ -120,11 +121,15 @@ class Problem:
             rhs[:, a] = np.bincount(self.rows_test, gm[:, a] * r0, nt)
             for b in range(a, m):
                 normal[:, a, b] = normal[:, b, a] = np.bincount(self.rows_test, gm[:, a] * gm[:, b], nt)
-        ridge = 1e-12 * np.maximum(np.trace(normal, axis1=1, axis2=2), 1e-300)[:, None, None] * np.eye(m)
-        d = -np.linalg.solve(normal + ridge + 1e-300 * np.eye(m), rhs[..., None])[..., 0]
+        if m == 1:      # the same numbers as the general case below (LAPACK solves 1×1 by one division)
+            a0 = normal[:, 0, 0]
+            d = -(rhs / (a0 + 1e-12 * np.maximum(a0, 1e-300) + 1e-300)[:, None])
+        else:
+            ridge = 1e-12 * np.maximum(np.trace(normal, axis1=1, axis2=2), 1e-300)[:, None, None] * np.eye(m)
+            d = -np.linalg.solve(normal + ridge + 1e-300 * np.eye(m), rhs[..., None])[..., 0]
         step = {}
         for a, f in enumerate(self.families):
-            lo, hi = self.model.bounds(f)
+            lo, hi = self.bounds[f]
             new = np.clip(vals[f] + d[:, a], lo, hi)
             d[:, a] = new - vals[f]
             step[f] = new

@@ -52,12 +52,21 @@ class BrakeSeries:
 
 
 def _broadcast(a, shape) -> np.ndarray:
-    """``np.broadcast_to(a, shape)`` (a read-only view), without its overhead when *a* has that shape already."""
-    if type(a) is np.ndarray and a.shape == shape:
-        v = a.view()
+    """``np.broadcast_to(a, shape)`` (read-only, the same values), without its overhead where *a* has that
+    shape already or is one number."""
+    if type(a) is np.ndarray and (a.shape == shape or a.ndim == 0):
+        v = a.view() if a.ndim else np.full(shape, a, a.dtype)
         v.flags.writeable = False
         return v
     return np.broadcast_to(a, shape)
+
+
+def _common_shape(*shapes) -> tuple:
+    """``np.broadcast_shapes(*shapes)``, at once where the shapes other than ``()`` are all the same."""
+    shaped = {s for s in shapes if s != ()}
+    if len(shaped) <= 1:
+        return shaped.pop() if shaped else ()
+    return np.broadcast_shapes(*shapes)
 
 
 def direction_to_sign(direction) -> np.ndarray:
@@ -78,7 +87,7 @@ def model_state(model, time_s, hand_force_N, direction="downhill", *, mu_drum=No
     amb = p.ambient_temp_C if ambient_C is None else ambient_C
     h = p.heat_transfer_W_m2K if heat_transfer_W_m2K is None else heat_transfer_W_m2K
     arrays = [np.asarray(x, float) for x in (time_s, hand_force_N, sign, t0, amb)]
-    shape = np.broadcast_shapes(*(a.shape for a in arrays), np.shape(mu), np.shape(h))
+    shape = _common_shape(*(a.shape for a in arrays), np.shape(mu), np.shape(h))
     t, f, s, t0b, ambb = (_broadcast(a, shape) for a in arrays)
     tid = None if test_index is None else _broadcast(np.asarray(test_index), shape)
     return ModelState(p, t, f, s, t0b, ambb, h, mu, test_index=tid, test_ids=test_ids)
@@ -178,8 +187,8 @@ def _with_effects(model, active, time_s, hand_force_N, direction, mu_drum, gap_m
                     test_ids=test_ids)
     shape = st.time_s.shape
     for e, v in active:                       # effect values may be arrays (uncertainty draws)
-        shape = np.broadcast_shapes(shape, *(np.shape(x) for x in v.values()))
-    shape = np.broadcast_shapes(shape, *(np.shape(x) for x in (brake or {}).values()))   # so may calibrated ones
+        shape = _common_shape(shape, *(np.shape(x) for x in v.values()))
+    shape = _common_shape(shape, *(np.shape(x) for x in (brake or {}).values()))   # so may calibrated ones
     if shape != st.time_s.shape:
         st = model_state(model, *(np.broadcast_to(a, shape) for a in (st.time_s, st.hand_force_N, st.sign)),
                         mu_drum=st.mu_drum, initial_temp_C=np.broadcast_to(st.initial_temp_C, shape),
