@@ -77,6 +77,7 @@ class Problem:
         self.step = {f: 1e-4 * (model.bounds(f)[1] - model.bounds(f)[0]) for f in self.families}
         batch = self.families and all(e.elementwise for e in model.effects) and not ambient_varies(data)
         self.stacked = stack_copies(data, len(self.families) + 1) if batch else None
+        self._tiled = None       # the weights tiled like self.stacked
 
     def raw(self, vals: dict) -> np.ndarray:
         self.nfev += 1
@@ -90,17 +91,17 @@ class Problem:
         """:meth:`raw` of several value sets that differ only in per-test arrays, in one evaluation of the
         model on stacked copies of the data (each copy its own tests); elementwise, so the same numbers."""
         self.nfev += len(sets)
-        data, n = self.stacked, len(self.data)
+        data, c = self.stacked, len(sets)
         vals = {k: (np.concatenate([s[k] for s in sets]) if isinstance(x, np.ndarray) and x.ndim == 1 else x)
                 for k, x in sets[0].items()}
         p = self.model.predict(data, vals)
-        out = []
-        for c in range(len(sets)):
-            with np.errstate(invalid="ignore"):
-                r = np.concatenate([(p.drum_temp_C[c * n:(c + 1) * n] - self.data.drum_temp_C) * self.w_temp,
-                                    (p.torque_Nm[c * n:(c + 1) * n] - self.data.torque_Nm) * self.w_torque])
-            out.append(np.where(np.isfinite(r), r, 1e6))
-        return out
+        if self._tiled is None:
+            self._tiled = tuple(np.tile(a, c) if a.ndim else a for a in (self.w_temp, self.w_torque))
+        w_t, w_q = self._tiled
+        with np.errstate(invalid="ignore"):
+            r = np.concatenate([((p.drum_temp_C - data.drum_temp_C) * w_t).reshape(c, -1),
+                                ((p.torque_Nm - data.torque_Nm) * w_q).reshape(c, -1)], axis=1)
+        return list(np.where(np.isfinite(r), r, 1e6))
 
     def profile(self, vals: dict):
         """Residual with the per-test families at their best values (one Gauss–Newton step)."""
