@@ -2,6 +2,7 @@
 import numpy as np
 import pytest
 
+from rollaway.effects import CATALOGUE, get_effect
 from rollaway.identify import fitting
 from rollaway.identify.calibrate import calibrate
 from rollaway.identify.fitting import Problem, stack_copies
@@ -47,3 +48,23 @@ def test_only_elementwise_effects_are_stacked(effects, stacks):
     w = np.ones(len(data))
     prob = Problem(model, data, model.parameter_names(), model.per_test_parameters(), values, w, w)
     assert (prob.stacked is not None) == stacks
+
+
+@pytest.mark.parametrize("name", [n for n, e in CATALOGUE.items() if e.elementwise])
+def test_an_elementwise_effect_gives_each_copy_its_own_numbers(name):
+    """What ``elementwise = True`` promises: the model on stacked copies (other T_0 per copy) equals the
+    model on each copy alone, bit for bit, at the effect's typical values."""
+    data = generate(["creep_exponential"], sampling="15min", seed=6, n_forces=2)
+    effect = get_effect(name)
+    model = BenchModel(effects=[name])
+    values = model.initial_values()
+    values.update({f"{name}.{k}": x for k, x in effect.typical_values().items()})
+    for p in effect.parameters:
+        if p.per_test:
+            values[f"{name}.{p.name}"] = np.linspace(-1.0, 1.0, data.n_tests) * effect.typical_values()[p.name]
+    sets = [dict(values, initial_temp_C=data.test_initial_temp_C + dt) for dt in (0.0, 0.5, -3.0)]
+    stacked = {k: (np.concatenate([s[k] for s in sets]) if np.ndim(v) == 1 else v) for k, v in sets[0].items()}
+    both = model.predict(stack_copies(data, 3), stacked)
+    for channel in ("drum_temp_C", "lining_temp_C", "torque_Nm"):
+        alone = np.concatenate([getattr(model.predict(data, s), channel) for s in sets])
+        assert np.array_equal(getattr(both, channel), alone), channel
