@@ -3,6 +3,7 @@
     PYTHONPATH=src python benchmarks/bench_diagnose.py --rows 288000      # one log (8 tests × 1 h: 10 Hz)
     PYTHONPATH=src python benchmarks/bench_diagnose.py                    # 0.1, 1, 10 and 100 Hz
     PYTHONPATH=src python benchmarks/bench_diagnose.py --scaling          # in-process scaling with tests and rows
+    PYTHONPATH=src python benchmarks/bench_diagnose.py --held-out         # the slow kinds of set, goal ≤ 5 s
 
 Each log is 8 tests of an hour (``rollaway synth``, hidden lining_creep unless ``--effect``) written as a CSV
 under a temporary folder; the CLI runs in a fresh interpreter and its peak resident memory is that process's
@@ -113,12 +114,51 @@ def scaling() -> None:
         print(f"{d.n_tests:>6}{len(d):>8}{s:>10.2f}{s / ref:>8.1f}")
 
 
+# the slow kinds of set (issue 23: ≤ 5 s for every diagnose of ≤ 10 000 rows), from the independent generator
+HELD_OUT = {
+    "two effects, 5-min": dict(effects=["friction_linear", "cable_exponential"], sampling="5min", seed=33),
+    "ratchet step, uphill only, 1-min": dict(effects=["ratchet_step"], sampling="1min", seed=42,
+                                             directions=("uphill",)),
+    "ratchet step, downhill only, 1-min": dict(effects=["ratchet_step"], sampling="1min", seed=35,
+                                               directions=("downhill",)),
+    "power-law creep, 1 Hz, 8 tests": dict(effects=["creep_power_law"], sampling="1Hz", seed=47,
+                                           duration_s=1248.0),
+    "two effects in other forms, 1-min": dict(effects=["modulus_sigmoid", "cable_log"], sampling="1min", seed=45),
+}
+
+
+def held_out() -> None:
+    """CPU and wall seconds of ``rollaway diagnose`` on :data:`HELD_OUT` through the CLI, and in reference units."""
+    from reference import reference_unit_s
+    sys.path.insert(0, str(Path(__file__).resolve().parents[1]))
+    from tests.identify.bench_generator import generate
+    ref = reference_unit_s()
+    print(f"reference unit (300 000 raw mj_step): {ref:.2f} s; goal: ≤ 5 s per set")
+    print(f"{'rows':>6}{'CPU s':>8}{'wall s':>8}{'units':>7}   set")
+    with tempfile.TemporaryDirectory() as tmp:
+        for name, kw in HELD_OUT.items():
+            data = generate(**kw)
+            path = Path(tmp) / "set.csv"
+            data.to_csv(path)
+            t = time.perf_counter()
+            p = subprocess.Popen([sys.executable, "-m", "rollaway", "diagnose", str(path)],
+                                 stdout=subprocess.DEVNULL, stderr=subprocess.DEVNULL, env=_env())
+            _, _, usage = os.wait4(p.pid, 0)
+            wall = time.perf_counter() - t
+            cpu = usage.ru_utime + usage.ru_stime
+            print(f"{len(data):>6}{cpu:>8.2f}{wall:>8.2f}{wall / ref:>7.2f}   {name}", flush=True)
+
+
 def main(argv=None):
     ap = argparse.ArgumentParser(description=__doc__.splitlines()[0])
     ap.add_argument("--rows", type=int, action="append", help="rows of the log (8 tests × 1 h; repeatable)")
     ap.add_argument("--effect", default="lining_creep", help="hidden effect ('' for none)")
     ap.add_argument("--scaling", action="store_true", help="in-process scaling with tests and rows instead")
+    ap.add_argument("--held-out", action="store_true", help="the slow kinds of set from the independent generator")
     a = ap.parse_args(argv)
+    if a.held_out:
+        held_out()
+        return
     if a.scaling:
         scaling()
         return

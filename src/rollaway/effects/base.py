@@ -124,6 +124,10 @@ class Effect:
     # the parameter whose neutral value switches the effect off whatever the others are (e.g. a lost
     # fraction, not its time constant); "" = the effect is neutral only when every parameter is
     amplitude: ClassVar[str] = ""
+    # True when every hook computes each sample from that sample's inputs alone (no test ids, no
+    # reductions or tables over samples): a fit may then evaluate several parameter sets in one call
+    # on stacked copies of the data (same numbers, less per-call overhead).  False (the default) is safe.
+    elementwise: ClassVar[bool] = False
 
     # -- bookkeeping -----------------------------------------------------------------
     @classmethod
@@ -148,7 +152,11 @@ class Effect:
     def is_neutral(cls, v: dict[str, float]) -> bool:
         """True if the values *v* leave the chain unchanged (the effect can be skipped)."""
         params = [cls.parameter(cls.amplitude)] if cls.amplitude else cls.parameters
-        return all(np.all(np.asarray(v.get(p.name, p.neutral)) == p.neutral) for p in params)
+        for p in params:
+            x = v.get(p.name, p.neutral)
+            if not (x == p.neutral if type(x) is float else np.all(np.asarray(x) == p.neutral)):
+                return False
+        return True
 
     @classmethod
     def per_test_parameters(cls) -> list[str]:

@@ -8,6 +8,7 @@ from rollaway.effects.base import Effect, EffectParameter
 
 class CableRelaxation(Effect):
     name = "cable_relaxation"
+    elementwise = True
     summary = "cable/lever stretch (creep, seating of the ratchet and strands) loses lining displacement"
     physics = ("u_6 ← u_6 − δ·(1 − e^{−t/τ_r}): the displacement set by the lever (eq. 24) is lost towards δ "
                "with time constant τ_r.")

@@ -8,6 +8,7 @@ from rollaway.effects.base import Effect, EffectParameter
 
 class DrumRadialContraction(Effect):
     name = "drum_radial_contraction"
+    elementwise = True
     summary = "the cooling drum's radius shrinks onto the shoes, raising the clamp force"
     physics = ("The 1D model counts only the drum *thickness* l_od in its thermal strain (eq. 16).  A cooling "
                "ring also shrinks radially by α_d·r_d·ΔT (r_d/l_od ≈ 11 times more); a fraction c_r of that "

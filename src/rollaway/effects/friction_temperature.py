@@ -11,6 +11,7 @@ MU_MAX_FRACTION = 0.95      # keep μ below 0.95·l_f/l_fr: the fit never enters
 
 class FrictionTemperature(Effect):
     name = "friction_temperature"
+    elementwise = True
     summary = "the shoe/drum friction coefficient μ changes with the lining temperature"
     physics = ("μ(T_l) = μ_d·(1 + k_μ·(T_l − 100 °C)); μ_d is the value at 100 °C.  μ enters both the "
                "torque (eq. 17b) and the shoe moment balance (eqs. 18–21).")

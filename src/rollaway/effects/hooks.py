@@ -29,7 +29,7 @@ def call_hook(effect: Effect, hook: str, state: ModelState, x, v: dict, scalar_o
     except (TypeError, ValueError):
         raise UserError(f"{effect_label(effect)}: hook '{hook}' returned {type(out).__name__}, not numbers; return an "
                         f"array shaped like its input") from None
-    if not (scalar_ok and arr.ndim == 0):
+    if not (scalar_ok and arr.ndim == 0) and arr.shape != state.time_s.shape:
         try:
             ok = np.broadcast_shapes(arr.shape, state.time_s.shape) == state.time_s.shape
         except ValueError:
@@ -37,8 +37,11 @@ def call_hook(effect: Effect, hook: str, state: ModelState, x, v: dict, scalar_o
         if not ok:
             raise UserError(f"{effect_label(effect)}: hook '{hook}' returned shape {arr.shape} for {state.time_s.shape} "
                             f"samples; return an array shaped like its input")
+    finite_out = np.isfinite(arr)
+    if finite_out.all():                      # the common case: nothing to excuse
+        return out
     finite_in = np.isfinite(state.time_s) & np.isfinite(np.asarray(x, float))   # garbage in is not the hook's
-    if not np.all(np.isfinite(arr) | ~finite_in):
+    if not np.all(finite_out | ~finite_in):
         raise UserError(f"{effect_label(effect)}: hook '{hook}' returned NaN or inf; return finite values (check the "
                         f"effect's formula and its parameter bounds)")
     return out

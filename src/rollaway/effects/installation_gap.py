@@ -6,6 +6,7 @@ from rollaway.effects.base import Effect, EffectParameter
 
 class InstallationGap(Effect):
     name = "installation_gap"
+    elementwise = True
     summary = "an installation gap l_g between lining and drum (the paper's eq. 16b; Table 1 lists 1 mm)"
     physics = ("Eq. (16b): every lining thickness l_ol in eq. (16a) becomes l_ol + l_g; the series stiffness "
                "drops (−20 % at 1 mm) and the thermal coefficient of the clamp force with it.")

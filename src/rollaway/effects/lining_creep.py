@@ -8,6 +8,7 @@ from rollaway.effects.base import Effect, EffectParameter
 
 class LiningCreep(Effect):
     name = "lining_creep"
+    elementwise = True
     summary = "the lining creeps under the held load: the clamp force relaxes with time"
     physics = ("Viscoelastic stress relaxation at fixed strain (standard linear solid): "
                "F_l0 ← F_l0·(1 − c·(1 − e^{−t/τ_c})), c the relaxed fraction, τ_c the relaxation time.")

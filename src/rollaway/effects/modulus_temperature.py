@@ -8,6 +8,7 @@ from rollaway.effects.base import Effect, EffectParameter
 
 class ModulusTemperature(Effect):
     name = "modulus_temperature"
+    elementwise = True
     summary = "the lining's Young's modulus E_l falls as it gets hot (resin softening)"
     physics = ("E_l(T_l) = E_l·max(1 − k_E·(T_l − T_amb), 0.05) in eq. (16); with the displacement fixed by the "
                "lever, the clamp force is nearly proportional to E_l.")

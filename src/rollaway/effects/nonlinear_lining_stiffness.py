@@ -10,6 +10,7 @@ REFERENCE_DISPLACEMENT_M = 1e-4   # u_6 at ≈ 300 N (eq. 24)
 
 class NonlinearLiningStiffness(Effect):
     name = "nonlinear_lining_stiffness"
+    elementwise = True
     summary = "lining force is not linear in displacement (compaction hardening of the friction material)"
     physics = ("Secant stiffness varies with displacement: the displacement entering eq. (16) is "
                "u_6·(c + a·(x − 1) + b·(x − 1)²), x = u_6/u_ref, u_ref = 0.1 mm (≈ 300 N hand force): a second-order "

@@ -26,6 +26,7 @@ def lagged_temperature_C(time_s, initial_temp_C, ambient_C, drum_time_constant_s
 
 class ShoeThermalLag(Effect):
     name = "shoe_thermal_lag"
+    elementwise = True
     summary = "shoes and lining cool more slowly than the drum: the lining's thermal strain lags"
     physics = ("The lining temperature follows the drum through a first-order lag τ_l "
                "(dT_l/dt = (T_d − T_l)/τ_l, T_l(0) = T_0).  T_l replaces T_d in the lining's thermal strain "

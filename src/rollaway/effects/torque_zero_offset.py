@@ -6,6 +6,7 @@ from rollaway.effects.base import Effect, EffectParameter
 
 class TorqueZeroOffset(Effect):
     name = "torque_zero_offset"
+    elementwise = True
     summary = "per-test zero offset of the torque transducer (zeroed by hand before each lever application)"
     physics = ("measured torque = T_gen (eq. 17b) + z_k, one constant z_k per test k: a strain-gauge bridge or "
                "load cell re-zeroed before each test keeps a small offset (drift of the bridge, seating of the "

@@ -27,7 +27,7 @@ from scipy import optimize
 from threadpoolctl import threadpool_limits
 
 from rollaway.bench.measurements import Measurements
-from rollaway.identify.model import INITIAL_TEMP, BenchModel
+from rollaway.identify.model import INITIAL_TEMP, BenchModel, ambient_varies
 
 MAX_OUTER = 4
 MAX_ITERATIONS = 25          # Levenberg–Marquardt iterations per pass (a fit that needs more is degenerate)
@@ -73,7 +73,11 @@ class Problem:
         self.w_temp, self.w_torque = np.asarray(w_temp, float), np.asarray(w_torque, float)
         self.rows_test = np.concatenate([data.test_index, data.test_index])
         self.nfev = 0
+        self.bounds = {f: model.bounds(f) for f in self.families}
         self.step = {f: 1e-4 * (model.bounds(f)[1] - model.bounds(f)[0]) for f in self.families}
+        batch = self.families and all(e.elementwise for e in model.effects) and not ambient_varies(data)
+        self.stacked = stack_copies(data, len(self.families) + 1) if batch else None
+        self._tiled = None       # the weights tiled like self.stacked
 
     def raw(self, vals: dict) -> np.ndarray:
         self.nfev += 1
@@ -83,15 +87,33 @@ class Problem:
                                 (p.torque_Nm - self.data.torque_Nm) * self.w_torque])
         return np.where(np.isfinite(r), r, 1e6)
 
+    def raw_stacked(self, sets: list[dict]) -> list[np.ndarray]:
+        """:meth:`raw` of several value sets that differ only in per-test arrays, in one evaluation of the
+        model on stacked copies of the data (each copy its own tests); elementwise, so the same numbers."""
+        self.nfev += len(sets)
+        data, c = self.stacked, len(sets)
+        vals = {k: (np.concatenate([s[k] for s in sets]) if isinstance(x, np.ndarray) and x.ndim == 1 else x)
+                for k, x in sets[0].items()}
+        p = self.model.predict(data, vals)
+        if self._tiled is None:
+            self._tiled = tuple(np.tile(a, c) if a.ndim else a for a in (self.w_temp, self.w_torque))
+        w_t, w_q = self._tiled
+        with np.errstate(invalid="ignore"):
+            r = np.concatenate([((p.drum_temp_C - data.drum_temp_C) * w_t).reshape(c, -1),
+                                ((p.torque_Nm - data.torque_Nm) * w_q).reshape(c, -1)], axis=1)
+        return list(np.where(np.isfinite(r), r, 1e6))
+
     def profile(self, vals: dict):
         """Residual with the per-test families at their best values (one Gauss–Newton step)."""
-        r0 = self.raw(vals)
         if not self.families:
-            return r0, {}, [], None
-        grads = []
-        for f in self.families:
-            g = (self.raw({**vals, f: vals[f] + self.step[f]}) - r0) / self.step[f]
-            grads.append(g)
+            return self.raw(vals), {}, [], None
+        sets = [vals] + [{**vals, f: vals[f] + self.step[f]} for f in self.families]
+        if self.stacked is not None and all(np.ndim(vals[f]) == 1 for f in self.families):
+            rs = self.raw_stacked(sets)
+        else:
+            rs = [self.raw(v) for v in sets]
+        r0 = rs[0]
+        grads = [(r - r0) / self.step[f] for r, f in zip(rs[1:], self.families)]
         gm = np.stack(grads, axis=1)                       # rows × m
         nt, m = self.data.n_tests, len(self.families)
         normal = np.zeros((nt, m, m))
@@ -100,11 +122,15 @@ class Problem:
             rhs[:, a] = np.bincount(self.rows_test, gm[:, a] * r0, nt)
             for b in range(a, m):
                 normal[:, a, b] = normal[:, b, a] = np.bincount(self.rows_test, gm[:, a] * gm[:, b], nt)
-        ridge = 1e-12 * np.maximum(np.trace(normal, axis1=1, axis2=2), 1e-300)[:, None, None] * np.eye(m)
-        d = -np.linalg.solve(normal + ridge + 1e-300 * np.eye(m), rhs[..., None])[..., 0]
+        if m == 1:      # the same numbers as the general case below (LAPACK solves 1×1 by one division)
+            a0 = normal[:, 0, 0]
+            d = -(rhs / (a0 + 1e-12 * np.maximum(a0, 1e-300) + 1e-300)[:, None])
+        else:
+            ridge = 1e-12 * np.maximum(np.trace(normal, axis1=1, axis2=2), 1e-300)[:, None, None] * np.eye(m)
+            d = -np.linalg.solve(normal + ridge + 1e-300 * np.eye(m), rhs[..., None])[..., 0]
         step = {}
         for a, f in enumerate(self.families):
-            lo, hi = self.model.bounds(f)
+            lo, hi = self.bounds[f]
             new = np.clip(vals[f] + d[:, a], lo, hi)
             d[:, a] = new - vals[f]
             step[f] = new
@@ -170,3 +196,14 @@ class Problem:
                 h = -h
             jac[:, i] = (self.profile({**vals, n: vals[n] + h})[0] - r0) / h * scale[i]
         return jac
+
+
+def stack_copies(data: Measurements, copies: int) -> Measurements:
+    """*copies* copies of *data* one after another, each with tests of its own (``"<id>#<copy>"``)."""
+    tile = (lambda a: None if a is None else np.tile(a, copies))  # noqa: E731
+    ids = np.array([f"{t}#{c}" for c in range(copies) for t in data.test_id.tolist()])
+    out = Measurements(test_id=ids, direction=tile(data.direction), hand_force_N=tile(data.hand_force_N),
+                       time_s=tile(data.time_s), drum_temp_C=tile(data.drum_temp_C), torque_Nm=tile(data.torque_Nm),
+                       ambient_C=tile(data.ambient_C), source=data.source)
+    out._ambient_varies = False
+    return out

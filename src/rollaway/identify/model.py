@@ -84,10 +84,12 @@ class BenchModel:
         return v
 
     def neutral_values(self) -> dict[str, float]:
-        v = values_of(self.params)
-        for e in self.effects:
-            v.update({f"{e.name}.{k}": x for k, x in e.neutral_values().items()})
-        return v
+        if getattr(self, "_neutral", None) is None:       # params and effects are set once, in __init__
+            v = values_of(self.params)
+            for e in self.effects:
+                v.update({f"{e.name}.{k}": x for k, x in e.neutral_values().items()})
+            self._neutral = v
+        return dict(self._neutral)
 
     def bounds(self, name: str) -> tuple[float, float]:
         if name == INITIAL_TEMP:

@@ -93,6 +93,7 @@ def flexible_effect(effect: Effect, covariate_values: np.ndarray) -> type[Effect
         "name": f"{effect.name}_shape", "summary": f"shape-free version of {effect.name}",
         "physics": f"{hook} × (1 + linear spline in {cov}, {n} segments)", "signature": "",
         "reference": "linear spline (no functional form assumed)", "parameters": params, hook: apply,
+        "elementwise": True,                  # fixed knots, each sample's own covariate
         "knots": knots, "hook": hook, "covariate": cov})
     return cls
 

@@ -51,6 +51,24 @@ class BrakeSeries:
                 "normal_force_N": self.normal_force_N, "torque_Nm": self.torque_Nm}
 
 
+def _broadcast(a, shape) -> np.ndarray:
+    """``np.broadcast_to(a, shape)`` (read-only, the same values), without its overhead where *a* has that
+    shape already or is one number."""
+    if type(a) is np.ndarray and (a.shape == shape or a.ndim == 0):
+        v = a.view() if a.ndim else np.full(shape, a, a.dtype)
+        v.flags.writeable = False
+        return v
+    return np.broadcast_to(a, shape)
+
+
+def _common_shape(*shapes) -> tuple:
+    """``np.broadcast_shapes(*shapes)``, at once where the shapes other than ``()`` are all the same."""
+    shaped = {s for s in shapes if s != ()}
+    if len(shaped) <= 1:
+        return shaped.pop() if shaped else ()
+    return np.broadcast_shapes(*shapes)
+
+
 def direction_to_sign(direction) -> np.ndarray:
     """+1 facing downhill (eq. 18), −1 uphill (eq. 19); accepts names or numeric signs."""
     d = np.asarray(direction)
@@ -69,18 +87,19 @@ def model_state(model, time_s, hand_force_N, direction="downhill", *, mu_drum=No
     amb = p.ambient_temp_C if ambient_C is None else ambient_C
     h = p.heat_transfer_W_m2K if heat_transfer_W_m2K is None else heat_transfer_W_m2K
     arrays = [np.asarray(x, float) for x in (time_s, hand_force_N, sign, t0, amb)]
-    shape = np.broadcast_shapes(*(a.shape for a in arrays), np.shape(mu), np.shape(h))
-    t, f, s, t0b, ambb = (np.broadcast_to(a, shape) for a in arrays)
-    tid = None if test_index is None else np.broadcast_to(np.asarray(test_index), shape)
+    shape = _common_shape(*(a.shape for a in arrays), np.shape(mu), np.shape(h))
+    t, f, s, t0b, ambb = (_broadcast(a, shape) for a in arrays)
+    tid = None if test_index is None else _broadcast(np.asarray(test_index), shape)
     return ModelState(p, t, f, s, t0b, ambb, h, mu, test_index=tid, test_ids=test_ids)
 
 def drum_temperature(model, time_s, *, initial_temp_C=None, ambient_C=None, heat_transfer_W_m2K=None,
                      values: dict | None = None, state: ModelState | None = None,
-                     base_temp_C: ArrayLike | None = None, **state_kw) -> np.ndarray:
+                     base_temp_C: ArrayLike | None = None, active: list | None = None, **state_kw) -> np.ndarray:
     """Drum temperature over time, eq. (10) plus the effects' ``drum_temperature`` hooks [°C].
 
     *base_temp_C*: the cooling law's temperature when it was integrated elsewhere (a logged,
     time-varying ambient, :func:`rollaway.physics.cooling.drum_temperature_logged_ambient_C`).
+    *active*: ``model.active(values)`` when the caller has it already.
     """
     p = model.params
     t0 = p.initial_drum_temp_C if initial_temp_C is None else np.asarray(initial_temp_C, float)
@@ -89,12 +108,12 @@ def drum_temperature(model, time_s, *, initial_temp_C=None, ambient_C=None, heat
     tau = cooling.cooling_time_constant_s(p.drum_density_kg_m3, p.drum_specific_heat_J_kgK, p.drum_volume_m3,
                                           h, p.cooled_area_m2)
     temp = cooling.drum_temperature_C(time_s, t0, amb, tau) if base_temp_C is None else base_temp_C
-    hooks = [(e, v) for e, v in model.active(values) if e.touches_temperature()]
+    hooks = [(e, v) for e, v in (model.active(values) if active is None else active) if e.touches_temperature()]
     if not hooks:
         return temp
     st = state or model_state(model, time_s, state_kw.pop("hand_force_N", 0.0), state_kw.pop("direction", "downhill"),
                              initial_temp_C=t0, ambient_C=amb, heat_transfer_W_m2K=h, **state_kw)
-    temp = np.broadcast_to(temp, st.time_s.shape)
+    temp = _broadcast(temp, st.time_s.shape)
     for e, v in hooks:
         temp = call_hook(e, "drum_temperature", st, temp, v)
     return temp
@@ -145,9 +164,9 @@ def _baseline(model, time_s, hand_force_N, direction, mu_drum, gap_m, initial_te
     f_l = drum.normal_force_N(f0, factor)
     torque = drum.brake_torque_Nm(mu, f_l, p.drum_radius_m)                             # eq. (17b)
     shape = np.broadcast_shapes(np.shape(time_s), np.shape(temp), np.shape(f_l))
-    b = lambda a: np.broadcast_to(np.asarray(a, float), shape)  # noqa: E731
+    b = lambda a: _broadcast(np.asarray(a, float), shape)  # noqa: E731
     return BrakeSeries(time_s=b(time_s), drum_temp_C=b(temp), normal_force_N=b(f_l), torque_Nm=b(torque),
-                       self_locked=np.broadcast_to(np.isinf(factor), shape), lining_temp_C=b(temp))
+                       self_locked=_broadcast(np.isinf(factor), shape), lining_temp_C=b(temp))
 
 def unenergised_force(model, u6, dT, lining_modulus_Pa=None, gap_m=None):
     """Clamp force before self-energising, eq. (16a) (gap 0) or (16b), with the set's material values [N]."""
@@ -168,8 +187,8 @@ def _with_effects(model, active, time_s, hand_force_N, direction, mu_drum, gap_m
                     test_ids=test_ids)
     shape = st.time_s.shape
     for e, v in active:                       # effect values may be arrays (uncertainty draws)
-        shape = np.broadcast_shapes(shape, *(np.shape(x) for x in v.values()))
-    shape = np.broadcast_shapes(shape, *(np.shape(x) for x in (brake or {}).values()))   # so may calibrated ones
+        shape = _common_shape(shape, *(np.shape(x) for x in v.values()))
+    shape = _common_shape(shape, *(np.shape(x) for x in (brake or {}).values()))   # so may calibrated ones
     if shape != st.time_s.shape:
         st = model_state(model, *(np.broadcast_to(a, shape) for a in (st.time_s, st.hand_force_N, st.sign)),
                         mu_drum=st.mu_drum, initial_temp_C=np.broadcast_to(st.initial_temp_C, shape),
@@ -178,9 +197,10 @@ def _with_effects(model, active, time_s, hand_force_N, direction, mu_drum, gap_m
                         test_index=None if st.test_index is None else np.broadcast_to(st.test_index, shape),
                         test_ids=test_ids)
     temp = (drum_temperature(model, st.time_s, initial_temp_C=st.initial_temp_C, ambient_C=st.ambient_C,
-                                  heat_transfer_W_m2K=st.heat_transfer_W_m2K, values=values, state=st)
+                                  heat_transfer_W_m2K=st.heat_transfer_W_m2K, values=values, state=st,
+                                  active=active)
             if drum_temp_C is None else drum_temp_C)
-    st.drum_temp_C = np.broadcast_to(np.asarray(temp, float), shape)
+    st.drum_temp_C = _broadcast(np.asarray(temp, float), shape)
     lining = st.drum_temp_C
     for e, v in active:                                                     # step 2
         lining = call_hook(e, "lining_temperature", st, lining, v)
@@ -203,7 +223,7 @@ def _with_effects(model, active, time_s, hand_force_N, direction, mu_drum, gap_m
         f0 = f0 + k_d * k_l * p.lining_expansion_per_K * l_eff * (lining - st.drum_temp_C) / den
     for e, v in active:
         f0 = call_hook(e, "clamp_force", st, f0, v)
-    mu = np.broadcast_to(np.asarray(st.mu_drum, float), shape)
+    mu = _broadcast(np.asarray(st.mu_drum, float), shape)
     for e, v in active:                                                     # step 6
         mu = call_hook(e, "friction", st, mu, v)
     factor = drum.self_energising_factor(mu, st.sign, p.shoe_arm_normal_m, arm_friction_m)  # step 7
@@ -211,9 +231,9 @@ def _with_effects(model, active, time_s, hand_force_N, direction, mu_drum, gap_m
     torque = drum.brake_torque_Nm(mu, f_l, p.drum_radius_m)                 # step 8, eq. (17b)
     for e, v in active:
         torque = call_hook(e, "torque", st, torque, v)
-    b = lambda a: np.broadcast_to(np.asarray(a, float), shape)  # noqa: E731
+    b = lambda a: _broadcast(np.asarray(a, float), shape)  # noqa: E731
     return BrakeSeries(time_s=b(st.time_s), drum_temp_C=b(st.drum_temp_C), normal_force_N=b(f_l),
-                       torque_Nm=b(torque), self_locked=np.broadcast_to(np.isinf(factor), shape),
+                       torque_Nm=b(torque), self_locked=_broadcast(np.isinf(factor), shape),
                        lining_temp_C=b(lining))
 
 

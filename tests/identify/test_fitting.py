@@ -1,0 +1,70 @@
+"""The fits' stacked evaluation (several value sets in one model call) gives the numbers of one call per set."""
+import numpy as np
+import pytest
+
+from rollaway.effects import CATALOGUE, get_effect
+from rollaway.identify import fitting
+from rollaway.identify.calibrate import calibrate
+from rollaway.identify.fitting import Problem, stack_copies
+from rollaway.identify.model import BenchModel
+from tests.identify.bench_generator import generate
+
+
+def _fit(data, effects, stacked: bool, monkeypatch):
+    with monkeypatch.context() as m:
+        if not stacked:
+            m.setattr(fitting, "stack_copies", lambda data, copies: None)
+        return calibrate(data, effects)
+
+
+@pytest.mark.parametrize("seed,hidden,effects", [
+    (1, ["cable_exponential"], ["cable_relaxation"]),
+    (2, ["creep_power_law"], ["lining_creep", "shoe_thermal_lag"]),
+    (3, ["zero_offset", "friction_linear"], ["torque_zero_offset", "friction_temperature"]),   # two families
+])
+def test_stacked_fit_is_bit_identical_to_one_call_per_set(seed, hidden, effects, monkeypatch):
+    data = generate(hidden, sampling="5min", seed=seed, n_forces=3)
+    a, b = (_fit(data, effects, s, monkeypatch) for s in (True, False))
+    assert a.values.keys() == b.values.keys()
+    for k in a.values:
+        assert np.array_equal(np.asarray(a.values[k]), np.asarray(b.values[k])), k
+
+
+def test_stacked_copies_are_tests_of_their_own():
+    data = generate([], sampling="15min", seed=4, n_forces=2)
+    s = stack_copies(data, 3)
+    assert len(s) == 3 * len(data) and s.n_tests == 3 * data.n_tests
+    assert np.array_equal(s.initial_temp_C, np.tile(data.initial_temp_C, 3))
+    assert np.array_equal(s.test_index[len(data):2 * len(data)], data.test_index + data.n_tests)
+
+
+@pytest.mark.parametrize("effects,stacks", [(["lining_creep"], True), (["radiation_cooling"], False),
+                                            (["lining_creep", "radiation_cooling"], False)])
+def test_only_elementwise_effects_are_stacked(effects, stacks):
+    """Radiation cooling tabulates its law over all samples of one ambient: copies would share the table."""
+    data = generate([], sampling="15min", seed=5, n_forces=2)
+    model = BenchModel(effects=effects)
+    values = {**model.initial_values(), "initial_temp_C": data.test_initial_temp_C.copy()}
+    w = np.ones(len(data))
+    prob = Problem(model, data, model.parameter_names(), model.per_test_parameters(), values, w, w)
+    assert (prob.stacked is not None) == stacks
+
+
+@pytest.mark.parametrize("name", [n for n, e in CATALOGUE.items() if e.elementwise])
+def test_an_elementwise_effect_gives_each_copy_its_own_numbers(name):
+    """What ``elementwise = True`` promises: the model on stacked copies (other T_0 per copy) equals the
+    model on each copy alone, bit for bit, at the effect's typical values."""
+    data = generate(["creep_exponential"], sampling="15min", seed=6, n_forces=2)
+    effect = get_effect(name)
+    model = BenchModel(effects=[name])
+    values = model.initial_values()
+    values.update({f"{name}.{k}": x for k, x in effect.typical_values().items()})
+    for p in effect.parameters:
+        if p.per_test:
+            values[f"{name}.{p.name}"] = np.linspace(-1.0, 1.0, data.n_tests) * effect.typical_values()[p.name]
+    sets = [dict(values, initial_temp_C=data.test_initial_temp_C + dt) for dt in (0.0, 0.5, -3.0)]
+    stacked = {k: (np.concatenate([s[k] for s in sets]) if np.ndim(v) == 1 else v) for k, v in sets[0].items()}
+    both = model.predict(stack_copies(data, 3), stacked)
+    for channel in ("drum_temp_C", "lining_temp_C", "torque_Nm"):
+        alone = np.concatenate([getattr(model.predict(data, s), channel) for s in sets])
+        assert np.array_equal(getattr(both, channel), alone), channel
