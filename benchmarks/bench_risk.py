@@ -23,24 +23,18 @@ import time
 from pathlib import Path
 
 ROOT = Path(__file__).resolve().parents[1]
-RARE = """grade_pct = 20
+FMVSS_CASE = """grade_pct = 20
 direction = "uphill"
 occupants = 5
 hand_force_N = 400
 duration_s = 300
 initial_drum_temp_C = 200
-[vary]
+"""
+RARE = FMVSS_CASE + """[vary]
 mu_drum = { normal = [0.45, 0.037] }
 hand_force_N = { normal = [400, 37] }
 """
-CALIBRATED = """params = "model.toml"
-grade_pct = 20
-direction = "uphill"
-occupants = 5
-hand_force_N = 400
-duration_s = 300
-initial_drum_temp_C = 200
-[vary]
+CALIBRATED = 'params = "model.toml"\n' + FMVSS_CASE + """[vary]
 hand_force_N = { normal = [400, 35] }
 initial_drum_temp_C = { triangular = [27, 120, 300] }
 occupants = { choice = [0, 1, 2, 3, 4, 5], weights = [0.3, 0.4, 0.15, 0.1, 0.03, 0.02] }

@@ -44,7 +44,8 @@ def test_cli_writes_a_valid_fmu(run_cli, tmp_path):
     assert validate_fmu(str(out)) == []
     names = zipfile.ZipFile(out).namelist()
     assert {"modelDescription.xml", "binaries/linux64/rollaway_drum.so", "sources/rollaway_drum.c",
-            "sources/rollaway_drum.h", "sources/fmi2_cosim.c", "sources/fmi2Functions.h"} <= set(names)
+            "sources/rollaway_drum.h", "sources/fmi2_cosim.c", "sources/cosim_core.c", "sources/cosim_core.h",
+            "sources/fmi2Functions.h"} <= set(names)
 
 
 @pytest.mark.parametrize("name", ["bench-hidden-effect", "bench-own-drum-downhill"])

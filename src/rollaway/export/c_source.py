@@ -257,9 +257,9 @@ def model_source(model, title: str) -> str:
 
 def sources(model, guid: str, title: str, wrapper: str = "fmi2_cosim.c") -> dict[str, str]:
     """File name → text of the FMU's generated and fixed C sources (FMI headers not included); *wrapper*
-    is the FMI interface (``fmi2_cosim.c`` or ``fmi3_cosim.c``)."""
+    is the FMI interface (``fmi2_cosim.c`` or ``fmi3_cosim.c``) over the life cycle both share (``cosim_core.c``)."""
     return {f"{MODEL_IDENTIFIER}.h": header(model, guid), f"{MODEL_IDENTIFIER}.c": model_source(model, title),
-            wrapper: c_text(wrapper)}
+            "cosim_core.h": c_text("cosim_core.h"), "cosim_core.c": c_text("cosim_core.c"), wrapper: c_text(wrapper)}
 
 
 __all__ = ["CHAIN_PARAMETERS", "MODEL_IDENTIFIER", "Variable", "c_text", "effect_hooks_in_c", "has_c_effect",

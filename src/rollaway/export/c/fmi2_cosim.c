@@ -1,18 +1,15 @@
 /* FMI 2.0 co-simulation interface of the rollaway drum model.
  *
- * This file is the same for every exported model: it keeps the FMI bookkeeping (instances,
- * modes, logging, getters and setters) and calls the model in rollaway_drum.c, which rollaway
- * generated from the Python chain with the model's values baked in:
+ * This file is the same for every exported model: it translates the FMI 2.0 calls (types, status
+ * codes, logging) to the life cycle in cosim_core.c, shared with the FMI 3.0 interface, which calls
+ * the model in rollaway_drum.c that rollaway generated from the Python chain with the model's values
+ * baked in:
  *
  *   drum_defaults(s)        start values of the parameters
  *   drum_check(s, msg)      parameter values within their ranges (0 = fine, else msg says why)
  *   drum_setup(s)           work that depends only on parameters (e.g. a cooling table)
  *   drum_evaluate(s, t)     outputs at t = time since the lever was applied [s]
  *   drum_get_real/_boolean, drum_set_real/_boolean   access by value reference
- *
- * The outputs are closed-form functions of time (eq. 10 and the effects' own solutions), so
- * fmi2DoStep evaluates them at the end of the step: no state is integrated here, and the
- * result does not depend on the communication step size.
  */
 #include <stdarg.h>
 #include <stdio.h>
@@ -20,14 +17,10 @@
 #include <string.h>
 
 #include "fmi2Functions.h"
-#include "rollaway_drum.h"
-
-typedef enum { MODE_INSTANTIATED, MODE_INITIALIZATION, MODE_STEP, MODE_TERMINATED, MODE_ERROR } Mode;
+#include "cosim_core.h"
 
 typedef struct {
-    DrumState state;
-    Mode mode;
-    double time_s;
+    Core core;
     int logging;
     fmi2String instance_name;
     fmi2CallbackFunctions callbacks;
@@ -51,14 +44,12 @@ static fmi2Status fail(Instance *inst, const char *fmt, const char *detail)
     return fmi2Error;
 }
 
-static fmi2Status evaluate(Instance *inst)
+/* fmi2OK where the core gives no reason, else the reason logged after the function's name */
+static fmi2Status report(Instance *inst, const char *function, const char *why)
 {
-    if (drum_evaluate(&inst->state, inst->time_s) != 0) {
-        inst->mode = MODE_ERROR;
-        return fail(inst, "%s", "the shoe self-locks (l_f - mu*l_fr <= 0, eqs. 18-21): the model has no finite "
-                    "torque; lower mu_drum");
-    }
-    return fmi2OK;
+    if (why == NULL) return fmi2OK;
+    log_message(inst, fmi2Error, "logStatusError", "%s: %s", function, why);
+    return fmi2Error;
 }
 
 /* ---- inquire version numbers and set debug logging ---------------------------------------- */
@@ -97,9 +88,7 @@ fmi2Component fmi2Instantiate(fmi2String instanceName, fmi2Type fmuType, fmi2Str
         functions->freeMemory(inst);
         return NULL;
     }
-    drum_defaults(&inst->state);
-    inst->mode = MODE_INSTANTIATED;
-    inst->time_s = 0.0;
+    core_reset(&inst->core);
     return inst;
 }
 
@@ -115,38 +104,30 @@ fmi2Status fmi2SetupExperiment(fmi2Component c, fmi2Boolean toleranceDefined, fm
 {
     Instance *inst = (Instance *)c;
     (void)toleranceDefined; (void)tolerance; (void)stopTimeDefined; (void)stopTime;
-    if (inst == NULL || inst->mode != MODE_INSTANTIATED) return fmi2Error;
-    inst->time_s = startTime;          /* the FMU's time is the time since the lever was applied */
+    if (inst == NULL || inst->core.mode != MODE_INSTANTIATED) return fmi2Error;
+    inst->core.time_s = startTime;     /* taken as the start by fmi2EnterInitializationMode */
     return fmi2OK;
 }
 
 fmi2Status fmi2EnterInitializationMode(fmi2Component c)
 {
     Instance *inst = (Instance *)c;
-    if (inst == NULL || inst->mode != MODE_INSTANTIATED) return fmi2Error;
-    inst->mode = MODE_INITIALIZATION;
-    return fmi2OK;
+    if (inst == NULL) return fmi2Error;
+    return report(inst, "fmi2EnterInitializationMode", core_enter_initialization(&inst->core, inst->core.time_s));
 }
 
 fmi2Status fmi2ExitInitializationMode(fmi2Component c)
 {
     Instance *inst = (Instance *)c;
-    char why[256];
-    if (inst == NULL || inst->mode != MODE_INITIALIZATION) return fmi2Error;
-    if (drum_check(&inst->state, why, sizeof why) != 0) {
-        inst->mode = MODE_ERROR;
-        return fail(inst, "%s", why);
-    }
-    drum_setup(&inst->state);
-    inst->mode = MODE_STEP;
-    return evaluate(inst);
+    if (inst == NULL) return fmi2Error;
+    return report(inst, "fmi2ExitInitializationMode", core_exit_initialization(&inst->core));
 }
 
 fmi2Status fmi2Terminate(fmi2Component c)
 {
     Instance *inst = (Instance *)c;
     if (inst == NULL) return fmi2Error;
-    inst->mode = MODE_TERMINATED;
+    inst->core.mode = MODE_TERMINATED;
     return fmi2OK;
 }
 
@@ -154,9 +135,7 @@ fmi2Status fmi2Reset(fmi2Component c)
 {
     Instance *inst = (Instance *)c;
     if (inst == NULL) return fmi2Error;
-    drum_defaults(&inst->state);
-    inst->mode = MODE_INSTANTIATED;
-    inst->time_s = 0.0;
+    core_reset(&inst->core);
     return fmi2OK;
 }
 
@@ -164,56 +143,44 @@ fmi2Status fmi2Reset(fmi2Component c)
 fmi2Status fmi2GetReal(fmi2Component c, const fmi2ValueReference vr[], size_t nvr, fmi2Real value[])
 {
     Instance *inst = (Instance *)c;
+    const char *why;
     size_t i;
     if (inst == NULL) return fmi2Error;
-    if (inst->mode == MODE_INITIALIZATION) {          /* outputs asked before the end of initialization */
-        char why[256];
-        if (drum_check(&inst->state, why, sizeof why) != 0) return fail(inst, "%s", why);
-        drum_setup(&inst->state);
-        drum_evaluate(&inst->state, inst->time_s);
-    }
-    for (i = 0; i < nvr; i++)
-        if (drum_get_real(&inst->state, vr[i], &value[i]) != 0)
-            return fail(inst, "fmi2GetReal: unknown value reference %s", "(see modelDescription.xml)");
-    return fmi2OK;
+    why = core_outputs_ready(&inst->core);
+    for (i = 0; why == NULL && i < nvr; i++) why = core_get_real(&inst->core, vr[i], &value[i]);
+    return report(inst, "fmi2GetReal", why);
 }
 
 fmi2Status fmi2GetBoolean(fmi2Component c, const fmi2ValueReference vr[], size_t nvr, fmi2Boolean value[])
 {
     Instance *inst = (Instance *)c;
+    const char *why = NULL;
     size_t i;
     if (inst == NULL) return fmi2Error;
-    for (i = 0; i < nvr; i++)
-        if (drum_get_boolean(&inst->state, vr[i], &value[i]) != 0)
-            return fail(inst, "fmi2GetBoolean: unknown value reference %s", "(see modelDescription.xml)");
-    return fmi2OK;
+    for (i = 0; why == NULL && i < nvr; i++) why = core_get_boolean(&inst->core, vr[i], &value[i]);
+    return report(inst, "fmi2GetBoolean", why);
 }
 
 fmi2Status fmi2SetReal(fmi2Component c, const fmi2ValueReference vr[], size_t nvr, const fmi2Real value[])
 {
     Instance *inst = (Instance *)c;
+    const char *why;
     size_t i;
     if (inst == NULL) return fmi2Error;
-    if (inst->mode != MODE_INSTANTIATED && inst->mode != MODE_INITIALIZATION)
-        return fail(inst, "%s", "fmi2SetReal: the parameters are fixed after initialization");
-    for (i = 0; i < nvr; i++)
-        if (drum_set_real(&inst->state, vr[i], value[i]) != 0)
-            return fail(inst, "fmi2SetReal: %s", "the value reference is not a parameter (outputs and the "
-                        "calibrated values are read-only)");
-    return fmi2OK;
+    why = core_parameters_settable(&inst->core);
+    for (i = 0; why == NULL && i < nvr; i++) why = core_set_real(&inst->core, vr[i], value[i]);
+    return report(inst, "fmi2SetReal", why);
 }
 
 fmi2Status fmi2SetBoolean(fmi2Component c, const fmi2ValueReference vr[], size_t nvr, const fmi2Boolean value[])
 {
     Instance *inst = (Instance *)c;
+    const char *why;
     size_t i;
     if (inst == NULL) return fmi2Error;
-    if (inst->mode != MODE_INSTANTIATED && inst->mode != MODE_INITIALIZATION)
-        return fail(inst, "%s", "fmi2SetBoolean: the parameters are fixed after initialization");
-    for (i = 0; i < nvr; i++)
-        if (drum_set_boolean(&inst->state, vr[i], value[i]) != 0)
-            return fail(inst, "fmi2SetBoolean: %s", "the value reference is not a Boolean parameter");
-    return fmi2OK;
+    why = core_parameters_settable(&inst->core);
+    for (i = 0; why == NULL && i < nvr; i++) why = core_set_boolean(&inst->core, vr[i], value[i]);
+    return report(inst, "fmi2SetBoolean", why);
 }
 
 fmi2Status fmi2GetInteger(fmi2Component c, const fmi2ValueReference vr[], size_t nvr, fmi2Integer value[])
@@ -268,11 +235,8 @@ fmi2Status fmi2DoStep(fmi2Component c, fmi2Real currentCommunicationPoint, fmi2R
 {
     Instance *inst = (Instance *)c;
     (void)noSetFMUStatePriorToCurrentPoint;
-    if (inst == NULL || inst->mode != MODE_STEP) return fmi2Error;
-    if (communicationStepSize < 0.0)
-        return fail(inst, "%s", "fmi2DoStep: the communication step size must not be negative");
-    inst->time_s = currentCommunicationPoint + communicationStepSize;
-    return evaluate(inst);
+    if (inst == NULL) return fmi2Error;
+    return report(inst, "fmi2DoStep", core_do_step(&inst->core, currentCommunicationPoint, communicationStepSize));
 }
 
 fmi2Status fmi2CancelStep(fmi2Component c) { (void)c; return fmi2Error; }
@@ -283,7 +247,7 @@ fmi2Status fmi2GetRealStatus(fmi2Component c, const fmi2StatusKind s, fmi2Real *
 {
     Instance *inst = (Instance *)c;
     if (inst == NULL || s != fmi2LastSuccessfulTime) return fmi2Discard;
-    *value = inst->time_s;
+    *value = inst->core.time_s;
     return fmi2OK;
 }
 fmi2Status fmi2GetIntegerStatus(fmi2Component c, const fmi2StatusKind s, fmi2Integer *value)

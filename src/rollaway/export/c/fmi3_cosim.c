@@ -1,8 +1,7 @@
 /* FMI 3.0 co-simulation interface of the rollaway drum model.
  *
- * The same model as fmi2_cosim.c (see there): rollaway_drum.c, generated from the Python chain,
- * gives drum_defaults, drum_check, drum_setup, drum_evaluate and access by value reference; this
- * file keeps the FMI 3.0 bookkeeping.  Co-simulation without event mode: after initialization
+ * The same model as fmi2_cosim.c (see there): this file translates the FMI 3.0 calls to the life
+ * cycle in cosim_core.c, which calls rollaway_drum.c, generated from the Python chain.  Co-simulation without event mode: after initialization
  * the instance is in step mode, and fmi3DoStep evaluates the closed-form outputs at the end of
  * the step.  Functions of other interfaces and types (model exchange, clocks, Int8 ... Binary,
  * FMU state, derivatives) log an error and return fmi3Error; the model has no such variables.
@@ -13,14 +12,10 @@
 #include <string.h>
 
 #include "fmi3Functions.h"
-#include "rollaway_drum.h"
-
-typedef enum { MODE_INSTANTIATED, MODE_INITIALIZATION, MODE_STEP, MODE_TERMINATED, MODE_ERROR } Mode;
+#include "cosim_core.h"
 
 typedef struct {
-    DrumState state;
-    Mode mode;
-    double time_s;
+    Core core;
     int logging;
     fmi3InstanceEnvironment environment;
     fmi3LogMessageCallback log;
@@ -41,15 +36,14 @@ static fmi3Status unsupported(fmi3Instance instance, const char *function)
     return fmi3Error;
 }
 
-static fmi3Status evaluate(Instance *inst)
+/* fmi3OK where the core gives no reason, else the reason logged after the function's name */
+static fmi3Status report(Instance *inst, const char *function, const char *why)
 {
-    if (drum_evaluate(&inst->state, inst->time_s) != 0) {
-        inst->mode = MODE_ERROR;
-        log_error(inst, "%s", "the shoe self-locks (l_f - mu*l_fr <= 0, eqs. 18-21): the model has no finite "
-                  "torque; lower mu_drum");
-        return fmi3Error;
-    }
-    return fmi3OK;
+    char text[320];
+    if (why == NULL) return fmi3OK;
+    snprintf(text, sizeof text, "%s: %s", function, why);
+    log_error(inst, "%s", text);
+    return fmi3Error;
 }
 
 const char *fmi3GetVersion(void) { return fmi3Version; }
@@ -112,8 +106,7 @@ fmi3Instance fmi3InstantiateCoSimulation(fmi3String instanceName, fmi3String ins
     inst->environment = instanceEnvironment;
     inst->log = logMessage;
     inst->logging = loggingOn;
-    drum_defaults(&inst->state);
-    inst->mode = MODE_INSTANTIATED;
+    core_reset(&inst->core);
     return inst;
 }
 
@@ -124,31 +117,21 @@ fmi3Status fmi3EnterInitializationMode(fmi3Instance instance, fmi3Boolean tolera
 {
     Instance *inst = (Instance *)instance;
     (void)toleranceDefined; (void)tolerance; (void)stopTimeDefined; (void)stopTime;
-    if (inst == NULL || inst->mode != MODE_INSTANTIATED) return fmi3Error;
-    inst->time_s = startTime;          /* the FMU's time is the time since the lever was applied */
-    inst->mode = MODE_INITIALIZATION;
-    return fmi3OK;
+    if (inst == NULL) return fmi3Error;
+    return report(inst, "fmi3EnterInitializationMode", core_enter_initialization(&inst->core, startTime));
 }
 
 fmi3Status fmi3ExitInitializationMode(fmi3Instance instance)
 {
     Instance *inst = (Instance *)instance;
-    char why[256];
-    if (inst == NULL || inst->mode != MODE_INITIALIZATION) return fmi3Error;
-    if (drum_check(&inst->state, why, sizeof why) != 0) {
-        inst->mode = MODE_ERROR;
-        log_error(inst, "%s", why);
-        return fmi3Error;
-    }
-    drum_setup(&inst->state);
-    inst->mode = MODE_STEP;
-    return evaluate(inst);
+    if (inst == NULL) return fmi3Error;
+    return report(inst, "fmi3ExitInitializationMode", core_exit_initialization(&inst->core));
 }
 
 fmi3Status fmi3Terminate(fmi3Instance instance)
 {
     if (instance == NULL) return fmi3Error;
-    ((Instance *)instance)->mode = MODE_TERMINATED;
+    ((Instance *)instance)->core.mode = MODE_TERMINATED;
     return fmi3OK;
 }
 
@@ -156,9 +139,7 @@ fmi3Status fmi3Reset(fmi3Instance instance)
 {
     Instance *inst = (Instance *)instance;
     if (inst == NULL) return fmi3Error;
-    drum_defaults(&inst->state);
-    inst->mode = MODE_INSTANTIATED;
-    inst->time_s = 0.0;
+    core_reset(&inst->core);
     return fmi3OK;
 }
 
@@ -166,74 +147,52 @@ fmi3Status fmi3GetFloat64(fmi3Instance instance, const fmi3ValueReference valueR
                           fmi3Float64 values[], size_t nValues)
 {
     Instance *inst = (Instance *)instance;
+    const char *why;
     size_t i;
     if (inst == NULL || nValues < nValueReferences) return fmi3Error;
-    if (inst->mode == MODE_INITIALIZATION) {          /* outputs asked before the end of initialization */
-        char why[256];
-        if (drum_check(&inst->state, why, sizeof why) != 0) { log_error(inst, "%s", why); return fmi3Error; }
-        drum_setup(&inst->state);
-        drum_evaluate(&inst->state, inst->time_s);
-    }
-    for (i = 0; i < nValueReferences; i++)
-        if (drum_get_real(&inst->state, valueReferences[i], &values[i]) != 0) {
-            log_error(inst, "fmi3GetFloat64: unknown value reference %s", "(see modelDescription.xml)");
-            return fmi3Error;
-        }
-    return fmi3OK;
+    why = core_outputs_ready(&inst->core);
+    for (i = 0; why == NULL && i < nValueReferences; i++) why = core_get_real(&inst->core, valueReferences[i], &values[i]);
+    return report(inst, "fmi3GetFloat64", why);
 }
 
 fmi3Status fmi3SetFloat64(fmi3Instance instance, const fmi3ValueReference valueReferences[], size_t nValueReferences,
                           const fmi3Float64 values[], size_t nValues)
 {
     Instance *inst = (Instance *)instance;
+    const char *why;
     size_t i;
     if (inst == NULL || nValues < nValueReferences) return fmi3Error;
-    if (inst->mode != MODE_INSTANTIATED && inst->mode != MODE_INITIALIZATION) {
-        log_error(inst, "%s", "fmi3SetFloat64: the parameters are fixed after initialization");
-        return fmi3Error;
-    }
-    for (i = 0; i < nValueReferences; i++)
-        if (drum_set_real(&inst->state, valueReferences[i], values[i]) != 0) {
-            log_error(inst, "fmi3SetFloat64: %s", "the value reference is not a parameter (outputs and the "
-                      "calibrated values are read-only)");
-            return fmi3Error;
-        }
-    return fmi3OK;
+    why = core_parameters_settable(&inst->core);
+    for (i = 0; why == NULL && i < nValueReferences; i++) why = core_set_real(&inst->core, valueReferences[i], values[i]);
+    return report(inst, "fmi3SetFloat64", why);
 }
 
 fmi3Status fmi3GetBoolean(fmi3Instance instance, const fmi3ValueReference valueReferences[], size_t nValueReferences,
                           fmi3Boolean values[], size_t nValues)
 {
     Instance *inst = (Instance *)instance;
+    const char *why = NULL;
     size_t i;
-    int v;
+    int v = 0;
     if (inst == NULL || nValues < nValueReferences) return fmi3Error;
-    for (i = 0; i < nValueReferences; i++) {
-        if (drum_get_boolean(&inst->state, valueReferences[i], &v) != 0) {
-            log_error(inst, "fmi3GetBoolean: unknown value reference %s", "(see modelDescription.xml)");
-            return fmi3Error;
-        }
+    for (i = 0; why == NULL && i < nValueReferences; i++) {
+        why = core_get_boolean(&inst->core, valueReferences[i], &v);
         values[i] = v != 0;
     }
-    return fmi3OK;
+    return report(inst, "fmi3GetBoolean", why);
 }
 
 fmi3Status fmi3SetBoolean(fmi3Instance instance, const fmi3ValueReference valueReferences[], size_t nValueReferences,
                           const fmi3Boolean values[], size_t nValues)
 {
     Instance *inst = (Instance *)instance;
+    const char *why;
     size_t i;
     if (inst == NULL || nValues < nValueReferences) return fmi3Error;
-    if (inst->mode != MODE_INSTANTIATED && inst->mode != MODE_INITIALIZATION) {
-        log_error(inst, "%s", "fmi3SetBoolean: the parameters are fixed after initialization");
-        return fmi3Error;
-    }
-    for (i = 0; i < nValueReferences; i++)
-        if (drum_set_boolean(&inst->state, valueReferences[i], values[i] ? 1 : 0) != 0) {
-            log_error(inst, "fmi3SetBoolean: %s", "the value reference is not a Boolean parameter");
-            return fmi3Error;
-        }
-    return fmi3OK;
+    why = core_parameters_settable(&inst->core);
+    for (i = 0; why == NULL && i < nValueReferences; i++)
+        why = core_set_boolean(&inst->core, valueReferences[i], values[i] ? 1 : 0);
+    return report(inst, "fmi3SetBoolean", why);
 }
 
 fmi3Status fmi3DoStep(fmi3Instance instance, fmi3Float64 currentCommunicationPoint, fmi3Float64 communicationStepSize,
@@ -243,17 +202,12 @@ fmi3Status fmi3DoStep(fmi3Instance instance, fmi3Float64 currentCommunicationPoi
     Instance *inst = (Instance *)instance;
     fmi3Status status;
     (void)noSetFMUStatePriorToCurrentPoint;
-    if (inst == NULL || inst->mode != MODE_STEP) return fmi3Error;
-    if (communicationStepSize < 0.0) {
-        log_error(inst, "%s", "fmi3DoStep: the communication step size must not be negative");
-        return fmi3Error;
-    }
-    inst->time_s = currentCommunicationPoint + communicationStepSize;
-    status = evaluate(inst);
+    if (inst == NULL) return fmi3Error;
+    status = report(inst, "fmi3DoStep", core_do_step(&inst->core, currentCommunicationPoint, communicationStepSize));
     if (eventHandlingNeeded) *eventHandlingNeeded = fmi3False;
     if (terminateSimulation) *terminateSimulation = fmi3False;
     if (earlyReturn) *earlyReturn = fmi3False;
-    if (lastSuccessfulTime) *lastSuccessfulTime = inst->time_s;
+    if (lastSuccessfulTime) *lastSuccessfulTime = inst->core.time_s;
     return status;
 }
 
