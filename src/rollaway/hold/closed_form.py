@@ -149,7 +149,7 @@ def tyre_adhesion_margin(params: BrakeParameters, grade_pct: ArrayLike, directio
                                    cg_height_m=z, gravity_m_s2=params.gravity_m_s2)
     mu_r = params.tyre_road_mu if tyre_road_mu is None else np.asarray(tyre_road_mu, float)
     demand = vehicle.slope_force_N(m, g, params.gravity_m_s2)
-    with np.errstate(divide="ignore", invalid="ignore"):
+    with np.errstate(divide="ignore", invalid="ignore", over="ignore"):   # a grade near 0: margin → inf
         return np.where(demand > 0, mu_r * n_r / np.where(demand > 0, demand, 1.0), np.inf)
 
 
