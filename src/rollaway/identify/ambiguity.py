@@ -52,6 +52,13 @@ def heldout_difference(a, b) -> tuple[float, float]:
     return float(d.sum()), se
 
 
+def not_ruled_out(a, b) -> bool:
+    """True when the held-out prediction does not prefer fit *a* over fit *b* beyond :data:`HELDOUT_SE`
+    standard errors and :data:`SMALL_ELPD` (:func:`heldout_difference`)."""
+    elpd, se = heldout_difference(a, b)
+    return elpd > -max(HELDOUT_SE * se, SMALL_ELPD)
+
+
 def rivals(best, candidates: list, threshold: float) -> list[dict]:
     """The step-1 candidates the data do not rule out against *best* (module docstring), best first:
     ``{"effects", "delta_bic" (against best), "heldout_elpd", "heldout_se", "why", "fit"}``."""
@@ -147,5 +154,6 @@ def verdict_line(verdict: str, alternatives: list[dict]) -> str:
     return f"{names}: these data cannot tell them apart; {alternatives[0]['tell_apart']['words']}"
 
 
-__all__ = ["HELDOUT_SE", "INDISTINGUISHABLE_BIC", "SMALL_ELPD", "MAX_RIVALS", "heldout_difference", "rivals", "tell_apart",
+__all__ = ["HELDOUT_SE", "INDISTINGUISHABLE_BIC", "SMALL_ELPD", "MAX_RIVALS", "heldout_difference", "not_ruled_out",
+           "rivals", "tell_apart",
            "verdict_line"]

@@ -366,7 +366,10 @@ def _predictive(data, refined: FitResult, pool: list[FitResult], n_effects: int,
     weights to *refined* (``fit_info``), for the saved model (:mod:`rollaway.uncertainty.bands`).  *misfit*:
     the saved model's form is known to leave structure (a "partial" effect, or structure remaining):
     its model error is widened by :data:`rollaway.uncertainty.bands.MISFIT_INFLATION`.  *keep*: fits the data
-    cannot tell from *refined* (named beside the verdict): always among the alternatives."""
+    cannot tell from *refined* (named beside the verdict): always among the alternatives.  A fit competes when
+    its BIC is within :data:`rollaway.uncertainty.bands.COMPETING_BIC` of *refined*'s or the held-out prediction
+    does not rule it out (BIC alone is overconfident where residuals are autocorrelated)."""
+    from rollaway.identify.ambiguity import not_ruled_out
     from rollaway.uncertainty.bands import COMPETING_BIC, alternatives, model_error
     from rollaway.model.predictive_record import record
     val = validity(data)
@@ -374,14 +377,14 @@ def _predictive(data, refined: FitResult, pool: list[FitResult], n_effects: int,
     if not pool:                  # the alternatives were weighed on the selection's rows (already attached)
         return
     comp = [f for f in pool if f is not refined and f.jacobian is not None and len(f.effects) <= 1
-            and f.bic - refined.bic < COMPETING_BIC] if n_effects <= 1 else []
+            and (f.bic - refined.bic < COMPETING_BIC or not_ruled_out(refined, f))] if n_effects <= 1 else []
     mix = alternatives(refined, comp + [f for f in keep if all(f is not g for g in comp)], keep=keep)
     alts = []
     for w, f in mix:
         if f is refined:
             continue
         f.covariance = predictive_covariance(f, drum.fixed_priors(), ess_inflation(f))
-        f.fit_info["predictive"] = record(model_error(f), val)
+        f.fit_info["predictive"] = record(model_error(f, misfit), val)
         f.fit_info["calibration"] = drum.record()
         alts.append((w, f))
     refined.fit_info["alternatives"] = alts

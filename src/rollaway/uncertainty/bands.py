@@ -8,7 +8,9 @@ question also depends on which effects were chosen and on how wrong the chosen f
 * **model error** — every test is predicted by the model calibrated on the other tests
   (linearised leave-one-test-out, :func:`rollaway.uncertainty.heldout.loto_residuals`).  Each
   test's score is its relative torque error where its margin is decided (the third of its
-  samples with the lowest predicted torque), less what the measurement noise alone gives.
+  samples with the lowest predicted torque), less what a right model would give there: the
+  measurement noise and the re-calibration without the test
+  (:func:`rollaway.uncertainty.heldout.loto_parameter_variance`; that parameter error is drawn apart).
   Their root mean square ``rel_sd`` (with ``dof`` = tests − 1) is a multiplicative torque
   error ε ~ rel_sd·t_dof drawn with every parameter draw: jackknife-style, distribution-free
   in its scores, Student-t in its use (a handful of tests cannot give a finite 90 % conformal
@@ -16,7 +18,8 @@ question also depends on which effects were chosen and on how wrong the chosen f
   structure remaining), the held-out tests saw that misfit only in part: ``rel_sd`` is widened
   (:data:`MISFIT_INFLATION`, assumed).  ``floor_rel_sd`` is the resolution of those scores: the
   relative error one test's noise alone gives where its margin is decided.  A model error below it
-  cannot be told from zero, so a question beyond the tested range never uses less;
+  cannot be told from zero: beyond the tested range it grows with the distance from the tested edge
+  (:func:`rollaway.uncertainty.predictive.model_error_sd`);
 * **choice of effects** — competing effect sets the data cannot rule out (within
   :data:`COMPETING_BIC` of the selected one, and always those named beside the verdict as
   indistinguishable) get pseudo-BMA weights from their leave-one-test-out
@@ -34,7 +37,7 @@ import math
 
 import numpy as np
 
-from rollaway.uncertainty.heldout import loto_residuals, loto_scores
+from rollaway.uncertainty.heldout import loto_parameter_variance, loto_residuals, loto_scores
 
 COMPETING_BIC = 6.0          # effect sets within this ΔBIC of the selected one compete for weight
 MIN_WEIGHT = 0.02            # lighter alternatives are dropped (weights renormalised)
@@ -60,7 +63,8 @@ def model_error(fit, misfit: bool = False) -> dict:
     n = len(d)
     loo = loto_residuals(fit)[n:] * d.torque_sigma_Nm            # model − measured [N·m], own test held out
     pred = fit.prediction.torque_Nm
-    scores, noise = [], []
+    scores, noise, tests = [], [], []
+    weights = np.zeros(2 * n)
     for k in range(d.n_tests):
         rows = np.flatnonzero(d.test_index == k)
         if rows.size == 0:
@@ -69,14 +73,19 @@ def model_error(fit, misfit: bool = False) -> dict:
         low = rows[np.argsort(pred[rows])[:m]]
         level = np.maximum(np.abs(pred[low]), 1e-9)
         scores.append(float(np.mean(loo[low] / level)))
-        noise.append(float(np.mean((d.torque_sigma_Nm[low] / level) ** 2) / low.size))
+        weights[n + low] = d.torque_sigma_Nm[low] / level / low.size     # score = Σ w·(standardised residual)
+        noise.append(float(np.sum(weights[n + low] ** 2)))
+        tests.append(k)
+    refit = loto_parameter_variance(fit, weights)[tests] if tests else np.zeros(len(tests))
     s2 = np.asarray(scores) ** 2
-    rel_sd = math.sqrt(max(float(np.mean(s2) - np.mean(noise)), 0.0)) if scores else 0.0
+    excess = float(np.mean(s2) - np.mean(noise) - np.mean(refit)) if scores else 0.0
+    rel_sd = math.sqrt(max(excess, 0.0))
     floor = math.sqrt(float(np.mean(noise))) if noise else 0.0
     if misfit:
         rel_sd *= MISFIT_INFLATION
     return {"rel_sd": rel_sd, "dof": max(len(scores) - 1, 1), "tests": len(scores),
-            "per_test": [float(x) for x in scores], "misfit": misfit, "floor_rel_sd": floor}
+            "per_test": [float(x) for x in scores], "misfit": misfit, "floor_rel_sd": floor,
+            "excess_ms": excess, "refit_ms": float(np.mean(refit)) if scores else 0.0}
 
 
 def alternatives(selected, competitors: list, keep=()) -> list[tuple[float, object]]:

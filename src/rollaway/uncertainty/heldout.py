@@ -24,6 +24,18 @@ def folds(n_tests: int) -> list[np.ndarray]:
     return [np.arange(i, n_tests, k) for i in range(k)]
 
 
+def _normalised_jacobian(fit):
+    j = np.where(np.isfinite(fit.jacobian), fit.jacobian, 0.0)
+    return j / np.sqrt(np.maximum((j * j).sum(axis=0), 1e-300))
+
+
+def _fold_solver(a: np.ndarray, jg: np.ndarray):
+    """x ↦ (JᵀJ − J_gᵀJ_g)⁺·x for the rows g of one fold (directions only g informs dropped)."""
+    m = a - jg.T @ jg
+    m += 1e-10 * np.trace(m) / max(len(m), 1) * np.eye(len(m))
+    return lambda x: np.linalg.lstsq(m, x, rcond=1e-8)[0]
+
+
 def loto_residuals(fit) -> np.ndarray:
     """Standardised residuals (model − measured)/σ, [temperature | torque], of every sample as
     predicted with its own test (its fold) left out of the calibration: the linearised
@@ -34,17 +46,36 @@ def loto_residuals(fit) -> np.ndarray:
                         (pred.torque_Nm - d.torque_Nm) / d.torque_sigma_Nm])
     if fit.jacobian is None or not fit.names:
         return r
-    j = np.where(np.isfinite(fit.jacobian), fit.jacobian, 0.0)
-    j = j / np.sqrt(np.maximum((j * j).sum(axis=0), 1e-300))
+    j = _normalised_jacobian(fit)
     rows_test = np.concatenate([d.test_index, d.test_index])
     a = j.T @ j
     out = r.copy()
     for held in folds(d.n_tests):
         g = np.isin(rows_test, held)
         jg, rg = j[g], r[g]
-        m = a - jg.T @ jg
-        m += 1e-10 * np.trace(m) / max(len(m), 1) * np.eye(len(m))
-        out[g] = rg + jg @ np.linalg.lstsq(m, jg.T @ rg, rcond=1e-8)[0]   # a direction only g informs: dropped
+        out[g] = rg + jg @ _fold_solver(a, jg)(jg.T @ rg)
+    return out
+
+
+def loto_parameter_variance(fit, weights: np.ndarray) -> np.ndarray:
+    """Per test k, the variance that re-calibrating without k's fold adds to the weighted sum
+    Σ_i w_i·r_i of k's held-out standardised residuals when the model is right: wᵀ·J_g·(JᵀJ − J_gᵀJ_g)⁺·J_gᵀ·w
+    (the held-out residual's covariance is (I − H_gg)⁻¹ = I + J_g·(JᵀJ − J_gᵀJ_g)⁻¹·J_gᵀ; the identity part
+    is the noise).  *weights*: one per row of [temperature | torque], zero outside the rows scored."""
+    d = fit.data
+    out = np.zeros(d.n_tests)
+    if fit.jacobian is None or not fit.names:
+        return out
+    j = _normalised_jacobian(fit)
+    w = np.asarray(weights, float)
+    rows_test = np.concatenate([d.test_index, d.test_index])
+    a = j.T @ j
+    for held in folds(d.n_tests):
+        g = np.isin(rows_test, held)
+        solve = _fold_solver(a, j[g])
+        for k in held:
+            v = j.T @ np.where(rows_test == k, w, 0.0)
+            out[k] = float(v @ solve(v))
     return out
 
 
@@ -55,4 +86,4 @@ def loto_scores(fit) -> np.ndarray:
     return np.bincount(np.concatenate([d.test_index, d.test_index]), loto * loto, d.n_tests)
 
 
-__all__ = ["FOLDS", "LOO_TESTS", "folds", "loto_residuals", "loto_scores"]
+__all__ = ["FOLDS", "LOO_TESTS", "folds", "loto_parameter_variance", "loto_residuals", "loto_scores"]

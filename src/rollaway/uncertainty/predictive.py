@@ -11,6 +11,9 @@ import numpy as np
 from rollaway.model.predictive_record import KEYS, record, validate  # noqa: F401  (the record, read here too)
 
 SPAN_FLOOR = {"hand_force_N": 50.0, "initial_temp_C": 50.0}     # a single tested value still has a scale [assumed]
+UNSEEN = 0.5                 # [assumed] the unseen model error counted inside the tested range, as a share of the
+                             # floor: an error that size adds a quarter of the noise's variance to a held-out score
+                             # (measured on tests/uncertainty/band_questions.py: 0.25 left 1-min bands at 0.88)
 TOLERANCE = 0.02             # within 2 % of the span of a tested edge counts as tested
 
 
@@ -41,17 +44,21 @@ def extrapolation(pred: dict, *, hand_force_N: float, direction: str, initial_te
 
 
 def model_error_sd(pred: dict, factor: float) -> float:
-    """The relative torque error's scale for a question with extrapolation *factor* (see :func:`model_error_draws`)."""
+    """The relative torque error's scale for a question with extrapolation *factor* (see :func:`model_error_draws`):
+    √((rel_sd·factor)² + floor_rel_sd²·(UNSEEN² + (factor − 1)²)).
+
+    The measured error (``rel_sd``) grows with the distance from the tested range.  An error the data could not
+    see — below ``floor_rel_sd``, the noise's resolution of one test's held-out error — is counted too: a share
+    :data:`UNSEEN` of the floor everywhere, and growing with the distance from the tested edge, so that a
+    question just outside the tested range is as good as a tested one."""
     sd = float(pred.get("model_error_rel_sd", 0.0))
-    if factor > 1.0:
-        sd = max(sd, float(pred.get("model_error_floor_rel_sd", 0.0)))
-    return sd * factor
+    floor = float(pred.get("model_error_floor_rel_sd", 0.0))
+    return float(np.sqrt((sd * factor) ** 2 + floor ** 2 * (UNSEEN ** 2 + max(factor - 1.0, 0.0) ** 2)))
 
 
 def model_error_draws(pred: dict, n: int, factor: float, rng: np.random.Generator) -> np.ndarray:
-    """n multiplicative torque errors ε (torque × (1 + ε)), Student-t with the record's dof, scaled by *factor*.
-    Beyond the tested range (*factor* > 1) the error is at least the record's floor (the noise's resolution
-    of the held-out error: the data cannot show a smaller one) before it is scaled."""
+    """n multiplicative torque errors ε (torque × (1 + ε)), Student-t with the record's dof, of scale
+    :func:`model_error_sd` (widened beyond the tested range by *factor*)."""
     sd = model_error_sd(pred, factor)
     if sd <= 0.0:
         return np.zeros(n)

@@ -1,0 +1,81 @@
+"""Leave-one-test-out residuals (rollaway.uncertainty.heldout) against a linear model whose answers are known."""
+from __future__ import annotations
+
+from types import SimpleNamespace
+
+import numpy as np
+
+from rollaway.uncertainty.bands import model_error
+from rollaway.uncertainty.heldout import loto_parameter_variance, loto_residuals
+from rollaway.uncertainty.predictive import model_error_sd
+
+
+class _Data(SimpleNamespace):
+    def __len__(self):
+        return len(self.test_index)
+
+
+def _design(rng, tests=5, per_test=12):
+    """A model linear in three global parameters and one offset per test, shaped like a FitResult's Jacobian:
+    rows [temperature | torque], the temperature channel holding only the per-test offsets."""
+    n = tests * per_test
+    test_index = np.repeat(np.arange(tests), per_test)
+    t = np.tile(np.linspace(0.0, 1.0, per_test), tests)
+    x = np.column_stack([np.ones(n), t, np.repeat(rng.uniform(0.5, 2.0, tests), per_test)])
+    offs = (test_index[:, None] == np.arange(tests)).astype(float)
+    jac = np.block([[np.zeros((n, 3)), offs], [x, np.zeros((n, tests))]])
+    truth = np.concatenate([[100.0, -10.0, 30.0], rng.normal(200.0, 5.0, tests)])
+    return test_index, jac, jac @ truth
+
+
+def _fit(test_index, jac, mean, noise, rng):
+    """The least-squares fit of one noisy draw around *mean*."""
+    n = len(test_index)
+    y = mean + noise * rng.standard_normal(2 * n)
+    pred = jac @ np.linalg.lstsq(jac, y, rcond=None)[0]
+    data = _Data(test_index=test_index, n_tests=int(test_index.max()) + 1, drum_temp_C=y[:n], torque_Nm=y[n:],
+                 temp_sigma_C=np.full(n, noise), torque_sigma_Nm=np.full(n, noise))
+    return SimpleNamespace(data=data, jacobian=jac, names=tuple(f"p{i}" for i in range(jac.shape[1])),
+                           prediction=SimpleNamespace(drum_temp_C=pred[:n], torque_Nm=pred[n:]))
+
+
+def test_held_out_residual_variance_is_noise_plus_the_refit_term():
+    """Over many noise draws, the variance of a weighted sum of one test's held-out residuals is
+    Σw² (noise) + loto_parameter_variance (the re-calibration without the test): within 10 %."""
+    rng = np.random.default_rng(3)
+    test_index, jac, mean = _design(np.random.default_rng(0))
+    n = len(test_index)
+    w = np.zeros(2 * n)
+    w[n:] = rng.uniform(0.0, 1.0, n) * (rng.random(n) < 0.4)
+    first = _fit(test_index, jac, mean, 1.0, rng)
+    refit = loto_parameter_variance(first, w)
+    expect = np.bincount(test_index, w[n:] ** 2, first.data.n_tests) + refit
+    assert np.all(refit > 0.05 * expect)                    # the refit term is not negligible here
+    sums = [np.bincount(np.concatenate([test_index] * 2), w * loto_residuals(_fit(test_index, jac, mean, 1.0, rng)),
+                        first.data.n_tests) for _ in range(3000)]
+    var = np.var(np.array(sums), axis=0)
+    assert np.allclose(var, expect, rtol=0.1), (var, expect)
+
+
+def test_a_right_model_has_no_model_error_on_average():
+    """Data from the fitted (linear) model itself: the measured excess mean square of the held-out scores is zero
+    on average once the noise and the re-calibration are taken out; the re-calibration term is a real part."""
+    rng = np.random.default_rng(5)
+    test_index, jac, mean = _design(np.random.default_rng(1))
+    errs = [model_error(_fit(test_index, jac, mean, 0.5, rng)) for _ in range(400)]
+    ex = np.array([e["excess_ms"] for e in errs])
+    se = ex.std(ddof=1) / np.sqrt(ex.size)
+    assert abs(ex.mean()) < 3 * se, (ex.mean(), se)
+    refit = np.mean([e["refit_ms"] for e in errs])
+    assert refit > 6 * se, (refit, se)                      # without it the estimate would be biased upwards
+
+
+def test_model_error_grows_from_the_tested_edge():
+    from rollaway.uncertainty.predictive import UNSEEN
+    pred = {"model_error_rel_sd": 0.01, "model_error_floor_rel_sd": 0.02}
+    assert abs(model_error_sd(pred, 1.0) - np.hypot(0.01, UNSEEN * 0.02)) < 1e-12
+    assert abs(model_error_sd(pred, 1.0 + 1e-9) - model_error_sd(pred, 1.0)) < 1e-6    # no jump at the edge
+    s = [model_error_sd(pred, f) for f in (1.0, 1.25, 1.5, 2.0, 3.0)]
+    assert all(a < b for a, b in zip(s, s[1:]))
+    assert abs(model_error_sd(pred, 2.0) ** 2 - (0.02 ** 2 + 0.02 ** 2 * (UNSEEN ** 2 + 1.0))) < 1e-12
+    assert model_error_sd({}, 2.0) == 0.0
