@@ -272,7 +272,8 @@ def diagnose(data: Measurements, params=None, effects=None, *, noise_torque_Nm: 
     for a in rivalry:
         ev.append(f"{verdict} or {' + '.join(a['effects'])}: these data cannot tell them apart — {a['why']}; "
                   f"{a['tell_apart']['words']}.")
-    misfit = remaining or any(e["form"] != "exact" for e in selected)
+    misfit = ("unexplained" if remaining and not any(e["form"] == "partial" for e in selected) else
+              "partial" if remaining or any(e["form"] != "exact" for e in selected) else False)
     pool = [base] + [c.fit for c in first_cands]
     if data is not full:                                  # the chosen model, refitted on every row
         _predictive(data, refined, pool, len(selected), drum, misfit, [a["fit"] for a in rivalry])
@@ -361,11 +362,12 @@ def _partial(data, params, base: FitResult, refined: FitResult, chosen: list[str
 
 
 def _predictive(data, refined: FitResult, pool: list[FitResult], n_effects: int, drum: DrumCalibration,
-                misfit: bool = False, keep=()) -> None:
+                misfit: bool | str = False, keep=()) -> None:
     """Attach the predictive record (model error, tested range) and the competing effect sets with their
     weights to *refined* (``fit_info``), for the saved model (:mod:`rollaway.uncertainty.bands`).  *misfit*:
-    the saved model's form is known to leave structure (a "partial" effect, or structure remaining):
-    its model error is widened by :data:`rollaway.uncertainty.bands.MISFIT_INFLATION`.  *keep*: fits the data
+    the saved model's form is known to leave structure (``"partial"``: an effect named "partial";
+    ``"unexplained"``: structure no catalogue form clears): its model error is widened
+    (:func:`rollaway.uncertainty.bands.model_error`).  *keep*: fits the data
     cannot tell from *refined* (named beside the verdict): always among the alternatives.  A fit competes when
     its BIC is within :data:`rollaway.uncertainty.bands.COMPETING_BIC` of *refined*'s or the held-out prediction
     does not rule it out (BIC alone is overconfident where residuals are autocorrelated)."""
