@@ -79,3 +79,20 @@ def test_model_error_grows_from_the_tested_edge():
     assert all(a < b for a, b in zip(s, s[1:]))
     assert abs(model_error_sd(pred, 2.0) ** 2 - (0.02 ** 2 + 0.02 ** 2 * (UNSEEN ** 2 + 1.0))) < 1e-12
     assert model_error_sd({}, 2.0) == 0.0
+
+
+def test_a_wrong_model_shows_its_error_and_a_known_misfit_widens_it():
+    """Data with a term the linear model lacks: the measured model error is well above zero, ×2.5 for a form
+    known to leave structure ("partial") and ×4 where no catalogue form clears it ("unexplained")."""
+    from rollaway.uncertainty.bands import MISFIT_INFLATION, UNEXPLAINED_INFLATION
+    test_index, jac, mean = _design(np.random.default_rng(2))
+    n = len(test_index)
+    t = np.tile(np.linspace(0.0, 1.0, n // 5), 5)
+    bent = mean.copy()
+    bent[n:] += 8.0 * (t - 0.5) ** 2 * np.repeat(np.random.default_rng(4).uniform(0.5, 1.5, 5), n // 5)
+    fit = _fit(test_index, jac, bent, 0.5, np.random.default_rng(6))
+    plain = model_error(fit)
+    assert plain["rel_sd"] > 2 * plain["floor_rel_sd"]
+    assert np.isclose(model_error(fit, "partial")["rel_sd"], MISFIT_INFLATION * plain["rel_sd"])
+    assert np.isclose(model_error(fit, True)["rel_sd"], MISFIT_INFLATION * plain["rel_sd"])
+    assert np.isclose(model_error(fit, "unexplained")["rel_sd"], UNEXPLAINED_INFLATION * plain["rel_sd"])
