@@ -121,6 +121,19 @@ def test_extrapolation_factor_grows_with_distance():
     assert f[0] == 1.0 and f[0] < f[1] < f[2] < f[3]
 
 
+def test_below_the_tested_forces_the_distance_follows_the_torque_level():
+    """Below the tested hand forces a relative error grows as the torque falls towards zero (eq. 24's u₆ = 0
+    at F₀): the distance is at least (F_lo − F₀)/(F − F₀) − 1, capped where no torque is left."""
+    pred = {"tested_hand_force_N": [180.0, 360.0]}
+    base = dict(direction="uphill", initial_temp_C=200.0, duration_s=3600.0)
+    span_only = extrapolation(pred, hand_force_N=135.0, **base)[0]
+    level = extrapolation(pred, hand_force_N=135.0, zero_torque_force_N=40.0, **base)[0]
+    assert span_only == 1.25 and abs(level - (1.0 + 140.0 / 95.0 - 1.0)) < 1e-12
+    above = [extrapolation(pred, hand_force_N=450.0, zero_torque_force_N=f0, **base)[0] for f0 in (None, 40.0)]
+    assert above[0] == above[1] == 1.5                    # above the tested forces the span rules
+    assert extrapolation(pred, hand_force_N=30.0, zero_torque_force_N=40.0, **base)[0] <= 11.0
+
+
 def test_saved_model_keeps_the_predictive_record_and_bad_tables_are_one_line_errors(tmp_path):
     from rollaway.model.drum_model import DrumModel
     d = diagnose(generate(["creep_exponential"], seed=920))

@@ -84,6 +84,30 @@ def rivals(best, candidates: list, threshold: float) -> list[dict]:
     return out[:MAX_RIVALS]
 
 
+def closest(base, candidates: list, base_cv, threshold: float, validity: dict, noise_torque_Nm: float) -> list[dict]:
+    """Where structure remains that no catalogue form clears: the candidates of the first step that point at
+    the physics — ΔBIC below *threshold* against the calibrated drum *base* and better held-out prediction
+    (*base_cv*) — the best :data:`MAX_RIVALS` by BIC (two forms that both leave structure are not ranked by
+    the evidence between them); each ``{"kind": "closest", "effects", "delta_bic" (against the drum alone),
+    "heldout_elpd", "heldout_se" (against the drum alone), "why", "tell_apart", "fit"}``.  With two, the test
+    that would tell them apart; with one, where it departs most from the drum alone."""
+    ok = [c for c in candidates if c.cv_score is not None and base_cv is not None and c.cv_score < base_cv
+          and c.delta_bic < threshold and c.fit.jacobian is not None]
+    if not ok or base.jacobian is None:
+        return []
+    out = []
+    for c in sorted(ok, key=lambda c: c.delta_bic)[:MAX_RIVALS]:
+        elpd, se = heldout_difference(base, c.fit)
+        out.append({"kind": "closest", "effects": [c.effect], "delta_bic": float(c.delta_bic), "heldout_elpd": elpd,
+                    "heldout_se": se, "fit": c.fit,
+                    "why": f"ΔBIC {c.delta_bic:.1f} and held-out log score {elpd:+.1f} ± {se:.1f} against the drum alone"})
+    other = out[1]["fit"] if len(out) > 1 else base
+    words = tell_apart(out[0]["fit"], other, validity, noise_torque_Nm)
+    for a in out:
+        a["tell_apart"] = words
+    return out
+
+
 def _grid(validity: dict):
     f_lo, f_hi = validity["hand_force_N"]
     span = max(f_hi - f_lo, 0.1 * f_hi)
@@ -147,13 +171,19 @@ def tell_apart(a, b, validity: dict, noise_torque_Nm: float) -> dict:
 
 
 def verdict_line(verdict: str, alternatives: list[dict]) -> str:
-    """"A or B: these data cannot tell them apart; a test at … would" (or the verdict alone)."""
+    """"A or B: these data cannot tell them apart; a test at … would" (or the verdict alone); for a verdict
+    ``none`` with the closest catalogue effects (:func:`closest`): "none explains …; closest: A or B"."""
     if not alternatives:
         return verdict
+    if alternatives[0].get("kind") == "closest":
+        names = " or ".join(a["effects"][0] for a in alternatives)
+        return (f"none: structure remains that no catalogue effect explains; closest: {names} (each leaves "
+                f"structure)" + (f"; these data cannot tell them apart; {alternatives[0]['tell_apart']['words']}"
+                                 if len(alternatives) > 1 else ""))
     names = " or ".join([verdict] + [" + ".join(a["effects"]) for a in alternatives])
     return f"{names}: these data cannot tell them apart; {alternatives[0]['tell_apart']['words']}"
 
 
-__all__ = ["HELDOUT_SE", "INDISTINGUISHABLE_BIC", "SMALL_ELPD", "MAX_RIVALS", "heldout_difference", "not_ruled_out",
+__all__ = ["HELDOUT_SE", "INDISTINGUISHABLE_BIC", "SMALL_ELPD", "MAX_RIVALS", "closest", "heldout_difference", "not_ruled_out",
            "rivals", "tell_apart",
            "verdict_line"]

@@ -23,7 +23,7 @@ from dataclasses import dataclass, field
 import numpy as np
 
 from rollaway.effects import available_effects, get_effect
-from rollaway.identify.ambiguity import rivals, tell_apart, verdict_line
+from rollaway.identify.ambiguity import closest, rivals, tell_apart, verdict_line
 from rollaway.identify.calibrate import FitResult, calibrate, evaluate
 from rollaway.identify.coarse import MAX_WINDOW_S, coarsen
 from rollaway.identify.drum import DrumCalibration, calibrate_drum, predictive_covariance, recheck
@@ -268,10 +268,19 @@ def diagnose(data: Measurements, params=None, effects=None, *, noise_torque_Nm: 
                          if dropped else ""))
     refined = recheck(drum, data, refined, [e["effect"] for e in selected]) if selected else refined
     rivalry = _rivals(selected, first_cands, base_cv, validity(full), nq)
+    if verdict == "none" and remaining and not rivalry:
+        rivalry = closest(base, first_cands, base_cv, BIC_THRESHOLD, validity(full), nq.sigma)
+        if rivalry:
+            ev.append(f"Closest in the catalogue: {' or '.join(a['effects'][0] for a in rivalry)} — "
+                      + "; ".join(f"{a['effects'][0]}: {a['why']}" for a in rivalry)
+                      + f".  Each leaves structure: they point at the physics, they do not explain it"
+                      + (f"; these data cannot tell them apart — {rivalry[0]['tell_apart']['words']}."
+                         if len(rivalry) > 1 else "."))
+    else:
+        for a in rivalry:
+            ev.append(f"{verdict} or {' + '.join(a['effects'])}: these data cannot tell them apart — {a['why']}; "
+                      f"{a['tell_apart']['words']}.")
     indist = [" + ".join(a["effects"]) for a in rivalry]
-    for a in rivalry:
-        ev.append(f"{verdict} or {' + '.join(a['effects'])}: these data cannot tell them apart — {a['why']}; "
-                  f"{a['tell_apart']['words']}.")
     misfit = ("unexplained" if remaining and not any(e["form"] == "partial" for e in selected) else
               "partial" if remaining or any(e["form"] != "exact" for e in selected) else False)
     pool = [base] + [c.fit for c in first_cands]

@@ -129,6 +129,12 @@ def _least_margins(model: DrumModel, n: int, seed, force_N: float, sign: float, 
     return vals, fn, least_margin(fn, duration_s)
 
 
+def zero_torque_force(model: DrumModel) -> float | None:
+    """The hand force where eq. (24) gives u₆ = 0 (no clamp force) for *model*'s values [N], or None."""
+    p = model.params
+    return -p.u6_offset_m / p.u6_slope_m_per_N if p.u6_slope_m_per_N > 0 else None
+
+
 def _half_width(x: np.ndarray) -> float:
     return 0.5 * float(np.percentile(x, 95) - np.percentile(x, 5)) if x.size else 0.0
 
@@ -156,7 +162,7 @@ def rollaway_risk(model: DrumModel, *, hand_force_N: float, grade_pct: float, di
     t_req = float(required_torque(model.params, g, occupants))
     t0 = model.params.initial_drum_temp_C if initial_temp_C is None else float(initial_temp_C)
     factor, flags = extrapolation(pred, hand_force_N=float(hand_force_N), direction=direction, initial_temp_C=t0,
-                                  duration_s=float(duration_s))
+                                  duration_s=float(duration_s), zero_torque_force_N=zero_torque_force(model))
     rng = np.random.default_rng(seed)
     eps = model_error_draws(pred, draws, factor, rng)
     parts = [(1.0 - sum(w for w, _ in model.alternatives), model)] + list(model.alternatives)

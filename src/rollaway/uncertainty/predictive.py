@@ -14,12 +14,18 @@ SPAN_FLOOR = {"hand_force_N": 50.0, "initial_temp_C": 50.0}     # a single teste
 UNSEEN = 0.5                 # [assumed] the unseen model error counted inside the tested range, as a share of the
                              # floor: an error that size adds a quarter of the noise's variance to a held-out score
                              # (measured on tests/uncertainty/band_questions.py: 0.25 left 1-min bands at 0.88)
+MAX_LEVEL_DISTANCE = 10.0    # a hand force at or below the one where the torque vanishes: the error is at most this far
 TOLERANCE = 0.02             # within 2 % of the span of a tested edge counts as tested
 
 
 def extrapolation(pred: dict, *, hand_force_N: float, direction: str, initial_temp_C: float,
-                  duration_s: float) -> tuple[float, list[str]]:
-    """(factor ≥ 1 on the model error, flags) for a road question against the tested range."""
+                  duration_s: float, zero_torque_force_N: float | None = None) -> tuple[float, list[str]]:
+    """(factor ≥ 1 on the model error, flags) for a road question against the tested range.
+
+    Each distance counts relative to the tested span.  Below the tested hand forces the torque falls
+    towards zero at *zero_torque_force_N* (eq. 24: u₆ = 0), and a relative error grows as the torque level
+    falls: there the distance is at least the torque level's ratio less one, (F_lo − F₀)/(F − F₀) − 1
+    (capped at :data:`MAX_LEVEL_DISTANCE`)."""
     factor, flags = 1.0, []
     for key, value, unit in (("hand_force_N", hand_force_N, "N"), ("initial_temp_C", initial_temp_C, "°C")):
         rng = pred.get(f"tested_{key}")
@@ -31,7 +37,11 @@ def extrapolation(pred: dict, *, hand_force_N: float, direction: str, initial_te
         if dist > TOLERANCE * span:
             name = "hand force" if key == "hand_force_N" else "start temperature T_0"
             flags.append(f"{name} {value:g} {unit} is outside the tested {lo:g}–{hi:g} {unit}")
-            factor += dist / span
+            rel = dist / span
+            if key == "hand_force_N" and value < lo and zero_torque_force_N is not None and lo > zero_torque_force_N:
+                level = (lo - zero_torque_force_N) / max(value - zero_torque_force_N, 1e-9)
+                rel = max(rel, min(level - 1.0, MAX_LEVEL_DISTANCE))
+            factor += rel
     dirs = pred.get("tested_directions")
     if dirs and direction not in dirs:
         flags.append(f"facing {direction} was not tested (only {', '.join(dirs)})")
