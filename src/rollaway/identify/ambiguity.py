@@ -61,7 +61,7 @@ def not_ruled_out(a, b) -> bool:
 
 def rivals(best, candidates: list, threshold: float) -> list[dict]:
     """The step-1 candidates the data do not rule out against *best* (module docstring), best first:
-    ``{"effects", "delta_bic" (against best), "heldout_elpd", "heldout_se", "why", "fit"}``."""
+    ``{"kind": "rival", "effects", "delta_bic" (against best), "heldout_elpd", "heldout_se", "why", "fit"}``."""
     out = []
     if best.fit.jacobian is None:
         return out
@@ -78,8 +78,8 @@ def rivals(best, candidates: list, threshold: float) -> list[dict]:
                    f"(Δ log score {elpd:+.1f} ± {se:.1f}): the evidence disagrees")
         else:
             continue
-        out.append({"effects": [c.effect], "delta_bic": float(dbic), "heldout_elpd": elpd, "heldout_se": se,
-                    "why": why, "fit": c.fit})
+        out.append({"kind": "rival", "effects": [c.effect], "delta_bic": float(dbic), "heldout_elpd": elpd,
+                    "heldout_se": se, "why": why, "fit": c.fit})
     out.sort(key=lambda r: r["delta_bic"])
     return out[:MAX_RIVALS]
 
