@@ -222,7 +222,8 @@ def diagnose(data: Measurements, params=None, effects=None, *, noise_torque_Nm: 
             ev.append("Exchange step: " + "; ".join(f"{a} replaced by {b} (BIC {d:+.1f})" for a, b, d in swaps)
                       + " — an effect picked early had absorbed part of a later one's signature.")
     if len(chosen) == 2:
-        chosen, current, struct, fits = _own_evidence(data, params, chosen, current, struct, fits, nq, nt, steps, ev)
+        chosen, current, struct, fits = _own_evidence(data, params, chosen, current, struct, fits, nq, nt, steps, ev,
+                                                      drum.held())
     refined = current
     selected = [{"effect": e, "form": "exact"} for e in chosen]
     shape = None
@@ -293,10 +294,11 @@ def diagnose(data: Measurements, params=None, effects=None, *, noise_torque_Nm: 
                      remaining, struct, base_cv, ev, selected, steps, shape, drum, rivalry)
 
 
-def _own_evidence(data, params, chosen, current, struct, fits, nq, nt, steps, ev):
+def _own_evidence(data, params, chosen, current, struct, fits, nq, nt, steps, ev, refree=()):
     """Keep the second of two selected effects only if it predicts held-out tests better than the first
-    re-formed (:func:`rollaway.identify.selection.beyond_reform`); else drop it and keep the first alone."""
-    own = beyond_reform(data, params, chosen[:1], current, current)
+    re-formed, with the brake parameters *refree* (held as not needed by the bare drum) freed in both
+    (:func:`rollaway.identify.selection.beyond_reform`); else drop it and keep the first alone."""
+    own = beyond_reform(data, params, chosen[:1], current, current, refree)
     if own is None:
         return chosen, current, struct, fits
     steps.append({"step": "own evidence", "effect": chosen[1], "kept": own["passes"], "beyond_reform": own})
@@ -305,7 +307,8 @@ def _own_evidence(data, params, chosen, current, struct, fits, nq, nt, steps, ev
     first = fits[0] if fits and fits[0] is not None and fits[0].effects == chosen[:1] else \
         calibrate(data, chosen[:1], params, start=current.values)
     ev.append(f"{chosen[1]} lowers BIC and predicts held-out tests better beside {chosen[0]}, but not beyond "
-              f"{chosen[0]} re-formed (its hook as a linear spline, no second effect): held-out log score "
+              f"{chosen[0]} re-formed (its hook as a linear spline, no second effect"
+              + (f"; {', '.join(refree)} freed in both" if refree else "") + "): held-out log score "
               f"{own['heldout_elpd']:+.1f} ± {own['heldout_se']:.1f}, better in {own['better_tests']} of "
               f"{own['tests']} tests — a partner that only absorbs the first effect's form mismatch; not named.")
     return chosen[:1], first, structure(first, nq, nt), [first]

@@ -94,6 +94,13 @@ class DrumCalibration:
     def plan(self) -> DrumPlan:
         return DrumPlan(self.params, self.free)
 
+    def held(self) -> tuple[str, ...]:
+        """Brake parameters the automatic choice held as *not needed* by the bare drum (the data test them and
+        agreed with the assumed value); none when the user chose the free set."""
+        if self.selection.startswith("chosen by you"):
+            return ()
+        return tuple(n for n, e in self.entries.items() if e.status == "fixed" and "not needed" in e.reason)
+
     def fixed_priors(self) -> dict[str, float]:
         """Assumed spreads of the brake parameters left at their assumed values (for the bands)."""
         return {n: e.prior_sd for n, e in self.entries.items() if e.prior_sd and e.status != "fitted"}

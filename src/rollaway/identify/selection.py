@@ -248,7 +248,7 @@ def eliminate(data, params, chosen, current, struct, nq, nt):
 
 
 # -- a second effect on its own evidence ---------------------------------------------------
-def beyond_reform(data, params, chosen: list[str], current: FitResult, two: FitResult) -> dict | None:
+def beyond_reform(data, params, chosen: list[str], current: FitResult, two: FitResult, refree=()) -> dict | None:
     """Does the fit *two* (the effect *chosen* plus a second one) predict held-out tests better than
     the first effect re-formed — its hook changed by a linear spline of its covariate
     (:func:`rollaway.identify.shape.flexible_effect`), no second effect?  A partner that only absorbs a
@@ -261,7 +261,12 @@ def beyond_reform(data, params, chosen: list[str], current: FitResult, two: FitR
     errors of the paired per-test difference (and by more than
     :data:`rollaway.identify.ambiguity.SMALL_ELPD`), in at least half of the tests (folds), and neither channel
     (drum temperature, torque) predicts worse beyond :data:`rollaway.identify.ambiguity.HELDOUT_SE` of its
-    own standard errors."""
+    own standard errors.
+
+    *refree*: brake parameters the drum calibration held at their assumed values although the data test
+    them ("not needed" without any effect): both compared fits free them.  A brake parameter that was not
+    needed by the bare drum can be needed once the first effect is in, and a second effect that stands in
+    for it (a gap or a radial contraction for a lining of another thickness) is then no discovery."""
     from rollaway.effects import get_effect
     from rollaway.identify.ambiguity import HELDOUT_SE, SMALL_ELPD
     from rollaway.identify.shape import covariate_of, flexible_effect, shape_hook
@@ -272,6 +277,13 @@ def beyond_reform(data, params, chosen: list[str], current: FitResult, two: FitR
     flex = None if found is None else flexible_effect(eff, covariate_of(current, found[1]))
     if flex is None:
         return None
+    refree = [n for n in refree if n not in getattr(params, "free", ())]
+    if refree:
+        from rollaway.identify.model import DrumPlan
+        params = DrumPlan(params.params, tuple(params.free) + tuple(refree))
+        two = calibrate(data, two.effects, params, start=two.values)
+        if two.jacobian is None:
+            return None
     reform = calibrate(data, [flex], params, start=current.values, max_iterations=REFORM_ITERATIONS)
     if reform.jacobian is None:
         return None
