@@ -33,8 +33,8 @@ from rollaway.identify.intervals import covariance_variances, ess_inflation, mix
 from rollaway.bench.measurements import Measurements
 from rollaway.bench.noise import Noise, noise_estimate, sample_sigma
 from rollaway.identify.diagnose_words import describe_residual, score_text, no_candidate_words, noise_words, structure_words
-from rollaway.identify.selection import (BIC_THRESHOLD, Candidate, beyond_reform, cv_score, eliminate, exchange, folds,
-                                         forward_step, has_per_test, per_test_signature, structure, weighted_chi2)
+from rollaway.identify.selection import (BIC_THRESHOLD, Candidate, cv_score, eliminate, exchange, folds, forward_step,
+                                         has_per_test, own_evidence, per_test_signature, structure, weighted_chi2)
 from rollaway.jsonsafe import to_jsonable
 from rollaway.uncertainty.bands import validity
 
@@ -221,9 +221,12 @@ def diagnose(data: Measurements, params=None, effects=None, *, noise_torque_Nm: 
             steps.append({"step": "exchange", "swaps": swaps})
             ev.append("Exchange step: " + "; ".join(f"{a} replaced by {b} (BIC {d:+.1f})" for a, b, d in swaps)
                       + " — an effect picked early had absorbed part of a later one's signature.")
+    partner = None                  # a second effect dropped for want of its own evidence, that cleared the residual
     if len(chosen) == 2:
-        chosen, current, struct, fits = _own_evidence(data, params, chosen, current, struct, fits, nq, nt, steps, ev,
-                                                      drum.held())
+        pair, pair_clean = list(chosen), not struct["structured"]
+        chosen, current, struct, fits = own_evidence(data, params, chosen, current, struct, fits, nq, nt, steps, ev,
+                                                     drum.held())
+        partner = pair[1] if len(chosen) == 1 and pair_clean else None
     refined = current
     selected = [{"effect": e, "form": "exact"} for e in chosen]
     shape = None
@@ -244,7 +247,14 @@ def diagnose(data: Measurements, params=None, effects=None, *, noise_torque_Nm: 
             part = _partial(data, params, base, fits[j - 1], chosen[:j], nq, nt)
             if part is not None:
                 break
-        if part is None:
+        if part is None and partner is not None:
+            verdict = chosen[0]
+            ev.append(f"The residual of baseline + {chosen[0]} is still structured ({structure_words(struct)}) and "
+                      f"no flexible version of {chosen[0]} removes it; {partner} does, but without evidence of its "
+                      f"own (above).  {chosen[0]} is named on its own evidence; what the data still want is left "
+                      f"unnamed (remaining structure): an effect outside the catalogue, or a departure of the drum "
+                      f"the free brake parameters do not cover (a lining of another thickness).")
+        elif part is None:
             verdict, selected, indist = "none", [], []
             ev.append(f"But the residual of baseline + {' + '.join(chosen)} is still structured "
                       f"({structure_words(struct)}), and no flexible version of these effects removes it: none "
@@ -292,26 +302,6 @@ def diagnose(data: Measurements, params=None, effects=None, *, noise_torque_Nm: 
     ev.append(_interval_words(refined, drum, alts))
     return Diagnosis(data, paper, base, nq, nt, first_cands, verdict, indist, refined,
                      remaining, struct, base_cv, ev, selected, steps, shape, drum, rivalry)
-
-
-def _own_evidence(data, params, chosen, current, struct, fits, nq, nt, steps, ev, refree=()):
-    """Keep the second of two selected effects only if it predicts held-out tests better than the first
-    re-formed, with the brake parameters *refree* (held as not needed by the bare drum) freed in both
-    (:func:`rollaway.identify.selection.beyond_reform`); else drop it and keep the first alone."""
-    own = beyond_reform(data, params, chosen[:1], current, current, refree)
-    if own is None:
-        return chosen, current, struct, fits
-    steps.append({"step": "own evidence", "effect": chosen[1], "kept": own["passes"], "beyond_reform": own})
-    if own["passes"]:
-        return chosen, current, struct, fits
-    first = fits[0] if fits and fits[0] is not None and fits[0].effects == chosen[:1] else \
-        calibrate(data, chosen[:1], params, start=current.values)
-    ev.append(f"{chosen[1]} lowers BIC and predicts held-out tests better beside {chosen[0]}, but not beyond "
-              f"{chosen[0]} re-formed (its hook as a linear spline, no second effect"
-              + (f"; {', '.join(refree)} freed in both" if refree else "") + "): held-out log score "
-              f"{own['heldout_elpd']:+.1f} ± {own['heldout_se']:.1f}, better in {own['better_tests']} of "
-              f"{own['tests']} tests — a partner that only absorbs the first effect's form mismatch; not named.")
-    return chosen[:1], first, structure(first, nq, nt), [first]
 
 
 def _interval_words(fit: FitResult, drum: DrumCalibration, alts) -> str:

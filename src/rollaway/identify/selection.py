@@ -312,3 +312,25 @@ def beyond_reform(data, params, chosen: list[str], current: FitResult, two: FitR
                passes=bool(ok and total.sum() > max(SECOND_EFFECT_SE * se, SMALL_ELPD) and 2 * better > total.size
                            and total.sum() - total.max() > SMALL_ELPD))
     return out
+
+
+def own_evidence(data, params, chosen, current, struct, fits, nq, nt, steps, ev, refree=()):
+    """Keep the second of two selected effects only if it predicts held-out tests better than the first
+    re-formed, with the brake parameters *refree* (held as not needed by the bare drum) freed in both
+    (:func:`beyond_reform`); else drop it and keep the first alone.  Logs to *steps*, explains in *ev*;
+    returns (chosen, current fit, its structure, fits per step)."""
+    own = beyond_reform(data, params, chosen[:1], current, current, refree)
+    if own is None:
+        return chosen, current, struct, fits
+    steps.append({"step": "own evidence", "effect": chosen[1], "kept": own["passes"], "beyond_reform": own})
+    if own["passes"]:
+        return chosen, current, struct, fits
+    first = fits[0] if fits and fits[0] is not None and fits[0].effects == chosen[:1] else \
+        calibrate(data, chosen[:1], params, start=current.values)
+    ev.append(f"{chosen[1]} lowers BIC and predicts held-out tests better beside {chosen[0]}, but not beyond "
+              f"{chosen[0]} re-formed (its hook as a linear spline, no second effect"
+              + (f"; {', '.join(refree)} freed in both" if refree else "") + "): held-out log score "
+              f"{own['heldout_elpd']:+.1f} ± {own['heldout_se']:.1f}, better in {own['better_tests']} of "
+              f"{own['tests']} tests — a partner that only absorbs the first effect's form mismatch or a departure "
+              f"of the drum; not named.")
+    return chosen[:1], first, structure(first, nq, nt), [first]
