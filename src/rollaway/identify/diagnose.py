@@ -23,7 +23,7 @@ from dataclasses import dataclass, field
 import numpy as np
 
 from rollaway.effects import available_effects, get_effect
-from rollaway.identify.ambiguity import rivals, tell_apart, verdict_line
+from rollaway.identify.ambiguity import rivals, tell_apart, verdict_line, weak_alternatives
 from rollaway.identify.calibrate import FitResult, calibrate, evaluate
 from rollaway.identify.coarse import MAX_WINDOW_S, coarsen
 from rollaway.identify.drum import DrumCalibration, calibrate_drum, predictive_covariance, recheck
@@ -279,7 +279,10 @@ def diagnose(data: Measurements, params=None, effects=None, *, noise_torque_Nm: 
                          if dropped else ""))
     refined = recheck(drum, data, refined, [e["effect"] for e in selected]) if selected else refined
     rivalry = _rivals(selected, first_cands, base_cv, validity(full), nq)
-    indist = [" + ".join(a["effects"]) for a in rivalry]
+    weak = weak_alternatives(params, base, first_cands, validity(full), nq.sigma) if not chosen and not remaining else []
+    indist = [" + ".join(a["effects"]) for a in rivalry + weak]
+    for a in weak:
+        ev.append(f"{a['effects'][0]} is not ruled out: {a['why']}; {a['tell_apart']['words']}.")
     for a in rivalry:
         ev.append(f"{verdict} or {' + '.join(a['effects'])}: these data cannot tell them apart — {a['why']}; "
                   f"{a['tell_apart']['words']}.")
@@ -301,7 +304,7 @@ def diagnose(data: Measurements, params=None, effects=None, *, noise_torque_Nm: 
     refined.fit_info["calibration"] = drum.record()
     ev.append(_interval_words(refined, drum, alts))
     return Diagnosis(data, paper, base, nq, nt, first_cands, verdict, indist, refined,
-                     remaining, struct, base_cv, ev, selected, steps, shape, drum, rivalry)
+                     remaining, struct, base_cv, ev, selected, steps, shape, drum, rivalry + weak)
 
 
 def _interval_words(fit: FitResult, drum: DrumCalibration, alts) -> str:
