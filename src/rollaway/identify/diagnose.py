@@ -26,7 +26,7 @@ from rollaway.effects import available_effects, get_effect
 from rollaway.identify.ambiguity import rivals, tell_apart, verdict_line, weak_alternatives
 from rollaway.identify.calibrate import FitResult, calibrate, evaluate
 from rollaway.identify.coarse import MAX_WINDOW_S, coarsen
-from rollaway.identify.drum import DrumCalibration, calibrate_drum, predictive_covariance, recheck
+from rollaway.identify.drum import DrumCalibration, calibrate_drum, free_needed, predictive_covariance, recheck
 from rollaway.identify.export import CalibratedModelMixin
 from rollaway.identify.fitting import single_blas_thread
 from rollaway.identify.intervals import covariance_variances, ess_inflation, mixture_variances, restate
@@ -227,6 +227,11 @@ def diagnose(data: Measurements, params=None, effects=None, *, noise_torque_Nm: 
         chosen, current, struct, fits = own_evidence(data, params, chosen, current, struct, fits, nq, nt, steps, ev,
                                                      drum.held())
         partner = pair[1] if len(chosen) == 1 and pair_clean else None
+        refit = free_needed(drum, data, chosen, current) if partner else None
+        if refit is not None:                     # the partner stood in for a brake parameter the drum held
+            params, current, struct, fits = drum.plan, refit, structure(refit, nq, nt), [refit]
+            ev.append(f"With {chosen[0]} in the model the drum needs "
+                      f"{', '.join(n for n in drum.free if n not in base.model.free)} fitted (BIC lower): freed.")
     refined = current
     selected = [{"effect": e, "form": "exact"} for e in chosen]
     shape = None
