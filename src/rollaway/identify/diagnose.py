@@ -14,6 +14,8 @@
    ``form: "partial"`` and the shape the data want is returned.  Otherwise nothing is
    claimed: verdict ``none`` with ``remaining_structure: true`` (an effect outside the
    catalogue remains).
+4. A second effect is named only on its own evidence (:func:`rollaway.identify.selection.own_evidence`); a
+   ``none`` verdict may carry weak alternatives (:func:`rollaway.identify.ambiguity.weak_alternatives`).
 """
 from __future__ import annotations
 
