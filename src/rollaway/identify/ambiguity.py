@@ -36,6 +36,9 @@ SMALL_ELPD = 4.0              # ... and beyond 4 in log score: below it the diff
                               # error unreliable (Sivula, Magnusson & Vehtari 2020, "Uncertainty in Bayesian
                               # leave-one-out cross-validation based model comparison", §5; the loo CV-FAQ)
 MAX_RIVALS = 2                # at most this many alternatives are named beside the verdict
+WEAK_BIC = -6.0               # "strong" evidence (Kass & Raftery 1995: 2·Δln L of 6–10) but short of the selection's
+                              # −10: named beside a "none" verdict as a weak alternative, never as the verdict [assumed]
+WEAK_TOP = 3                  # step-1 candidates examined for a weak alternative
 FORCE_REACH = 0.25            # hand forces this far beyond the tested range (relative) [assumed]
 TEMP_REACH_C = 50.0           # start temperatures this far beyond the tested range [assumed]
 DURATION_REACH = 2.0          # holds this many times the tested length [assumed]
@@ -108,6 +111,54 @@ def closest(base, candidates: list, base_cv, threshold: float, validity: dict, n
     return out
 
 
+def weak_alternatives(plan, base, candidates: list, validity: dict, noise_torque_Nm: float) -> list[dict]:
+    """Effects a "none" verdict cannot rule out: the best :data:`WEAK_TOP` step-1 *candidates* (ΔBIC < 0 against
+    the calibrated drum *base*), each compared fairly with the drum — refitted with the brake parameters of *plan*
+    that it makes unnecessary held (backward elimination by BIC, μ_d always fitted; the bare drum freed them to
+    imitate it: a loss with time at constant temperature takes the eq. (24) slope and offset) — and kept when that
+    fit lowers BIC by more than −:data:`WEAK_BIC` and predicts held-out tests better (:func:`heldout_difference`
+    above :data:`SMALL_ELPD`), with the test that would settle it (:func:`tell_apart`).  At most
+    :data:`MAX_RIVALS`, best first: ``{"effects", "delta_bic", "heldout_elpd", "heldout_se", "why", "fit",
+    "tell_apart", "weak": True}``."""
+    out = []
+    if base.jacobian is None:
+        return out
+    for c in [c for c in candidates if c.delta_bic < 0.0][:WEAK_TOP]:
+        fit = _held_where_unneeded(plan, c.effect, c.fit)
+        if fit is None or fit.bic - base.bic >= WEAK_BIC:
+            continue
+        elpd, se = heldout_difference(base, fit)
+        if elpd <= SMALL_ELPD:
+            continue
+        held = [n for n in plan.free if n not in fit.model.free]
+        why = (f"with {c.effect} in the model{' ' + ', '.join(held) + ' need not be fitted and' if held else ''} BIC "
+               f"drops by {base.bic - fit.bic:.1f} (selection needs {-WEAK_BIC:g} to name it as an alternative, 10 "
+               f"as the verdict) and held-out tests are predicted better (Δ log score {elpd:+.1f} ± {se:.1f}): "
+               f"suggested, not established")
+        out.append({"kind": "weak", "effects": [c.effect], "delta_bic": float(fit.bic - base.bic), "heldout_elpd": elpd,
+                    "heldout_se": se, "why": why, "fit": fit, "weak": True,
+                    "tell_apart": tell_apart(base, fit, validity, noise_torque_Nm)})
+    out.sort(key=lambda r: r["delta_bic"])
+    return out[:MAX_RIVALS]
+
+
+def _held_where_unneeded(plan, effect: str, fit):
+    """*fit* (*effect* on the drum of *plan*) with the brake parameters it makes unnecessary held at their assumed
+    values, one at a time while BIC drops; None without a Jacobian."""
+    from rollaway.identify.calibrate import calibrate
+    from rollaway.identify.model import DrumPlan
+    free = list(plan.free)
+    while len(free) > 1:
+        trials = [(calibrate(fit.data, [effect], DrumPlan(plan.params, tuple(f for f in free if f != n)),
+                             start={k: v for k, v in fit.values.items() if k != n}), n) for n in free if n != "mu_drum"]
+        best, name = min(trials, key=lambda t: t[0].bic)
+        if best.bic >= fit.bic:
+            break
+        free.remove(name)
+        fit = best
+    return fit if fit.jacobian is not None else None
+
+
 def _grid(validity: dict):
     f_lo, f_hi = validity["hand_force_N"]
     span = max(f_hi - f_lo, 0.1 * f_hi)
@@ -170,11 +221,30 @@ def tell_apart(a, b, validity: dict, noise_torque_Nm: float) -> dict:
             "by_factor_Nm": by, "factor": factor, "words": words}
 
 
+def alternative_words(verdict: str, alternatives: list[dict]) -> list[str]:
+    """The evidence lines of a verdict's alternatives (rivals, closest or weak)."""
+    if not alternatives:
+        return []
+    kind = alternatives[0].get("kind")
+    if kind == "closest":
+        return [f"Closest in the catalogue: {' or '.join(a['effects'][0] for a in alternatives)} — "
+                + "; ".join(f"{a['effects'][0]}: {a['why']}" for a in alternatives)
+                + ".  Each leaves structure: they point at the physics, they do not explain it"
+                + (f"; these data cannot tell them apart — {alternatives[0]['tell_apart']['words']}."
+                   if len(alternatives) > 1 else ".")]
+    return [f"{a['effects'][0]} is not ruled out: {a['why']}; {a['tell_apart']['words']}." if a.get("kind") == "weak"
+            else f"{verdict} or {' + '.join(a['effects'])}: these data cannot tell them apart — {a['why']}; "
+                 f"{a['tell_apart']['words']}." for a in alternatives]
+
+
 def verdict_line(verdict: str, alternatives: list[dict]) -> str:
     """"A or B: these data cannot tell them apart; a test at … would" (or the verdict alone); for a verdict
     ``none`` with the closest catalogue effects (:func:`closest`): "none explains …; closest: A or B"."""
     if not alternatives:
         return verdict
+    if alternatives[0].get("kind") == "weak":
+        names = " or ".join(a["effects"][0] for a in alternatives)
+        return (f"none (suggested, not established: {names}); {alternatives[0]['tell_apart']['words']}")
     if alternatives[0].get("kind") == "closest":
         names = " or ".join(a["effects"][0] for a in alternatives)
         return (f"none: structure remains that no catalogue effect explains; closest: {names} (each leaves "
@@ -184,6 +254,5 @@ def verdict_line(verdict: str, alternatives: list[dict]) -> str:
     return f"{names}: these data cannot tell them apart; {alternatives[0]['tell_apart']['words']}"
 
 
-__all__ = ["HELDOUT_SE", "INDISTINGUISHABLE_BIC", "SMALL_ELPD", "MAX_RIVALS", "closest", "heldout_difference", "not_ruled_out",
-           "rivals", "tell_apart",
-           "verdict_line"]
+__all__ = ["HELDOUT_SE", "INDISTINGUISHABLE_BIC", "SMALL_ELPD", "MAX_RIVALS", "WEAK_BIC", "alternative_words", "closest",
+           "heldout_difference", "not_ruled_out", "rivals", "tell_apart", "verdict_line", "weak_alternatives"]

@@ -14,6 +14,8 @@
    ``form: "partial"`` and the shape the data want is returned.  Otherwise nothing is
    claimed: verdict ``none`` with ``remaining_structure: true`` (an effect outside the
    catalogue remains).
+4. A second effect is named only on its own evidence (:func:`rollaway.identify.selection.own_evidence`); a
+   ``none`` verdict may carry weak alternatives (:func:`rollaway.identify.ambiguity.weak_alternatives`).
 """
 from __future__ import annotations
 
@@ -23,18 +25,18 @@ from dataclasses import dataclass, field
 import numpy as np
 
 from rollaway.effects import available_effects, get_effect
-from rollaway.identify.ambiguity import closest, rivals, tell_apart, verdict_line
+from rollaway.identify.ambiguity import alternative_words, closest, rivals, tell_apart, verdict_line, weak_alternatives
 from rollaway.identify.calibrate import FitResult, calibrate, evaluate
 from rollaway.identify.coarse import MAX_WINDOW_S, coarsen
-from rollaway.identify.drum import DrumCalibration, calibrate_drum, predictive_covariance, recheck
+from rollaway.identify.drum import DrumCalibration, calibrate_drum, free_needed, predictive_covariance, recheck
 from rollaway.identify.export import CalibratedModelMixin
 from rollaway.identify.fitting import single_blas_thread
 from rollaway.identify.intervals import covariance_variances, ess_inflation, mixture_variances, restate
 from rollaway.bench.measurements import Measurements
 from rollaway.bench.noise import Noise, noise_estimate, sample_sigma
 from rollaway.identify.diagnose_words import describe_residual, score_text, no_candidate_words, noise_words, structure_words
-from rollaway.identify.selection import (BIC_THRESHOLD, Candidate, beyond_reform, cv_score, eliminate, exchange, folds,
-                                         forward_step, has_per_test, per_test_signature, structure, weighted_chi2)
+from rollaway.identify.selection import (BIC_THRESHOLD, Candidate, cv_score, eliminate, exchange, folds, forward_step,
+                                         has_per_test, own_evidence, per_test_signature, structure, weighted_chi2)
 from rollaway.jsonsafe import to_jsonable
 from rollaway.uncertainty.bands import validity
 
@@ -221,8 +223,17 @@ def diagnose(data: Measurements, params=None, effects=None, *, noise_torque_Nm: 
             steps.append({"step": "exchange", "swaps": swaps})
             ev.append("Exchange step: " + "; ".join(f"{a} replaced by {b} (BIC {d:+.1f})" for a, b, d in swaps)
                       + " — an effect picked early had absorbed part of a later one's signature.")
+    partner = None                  # a second effect dropped for want of its own evidence, that cleared the residual
     if len(chosen) == 2:
-        chosen, current, struct, fits = _own_evidence(data, params, chosen, current, struct, fits, nq, nt, steps, ev)
+        pair, pair_clean = list(chosen), not struct["structured"]
+        chosen, current, struct, fits = own_evidence(data, params, chosen, current, struct, fits, nq, nt, steps, ev,
+                                                     drum.held())
+        partner = pair[1] if len(chosen) == 1 and pair_clean else None
+        refit = free_needed(drum, data, chosen, current) if partner else None
+        if refit is not None:                     # the partner stood in for a brake parameter the drum held
+            params, current, struct, fits = drum.plan, refit, structure(refit, nq, nt), [refit]
+            ev.append(f"With {chosen[0]} in the model the drum needs "
+                      f"{', '.join(n for n in drum.free if n not in base.model.free)} fitted (BIC lower): freed.")
     refined = current
     selected = [{"effect": e, "form": "exact"} for e in chosen]
     shape = None
@@ -243,7 +254,14 @@ def diagnose(data: Measurements, params=None, effects=None, *, noise_torque_Nm: 
             part = _partial(data, params, base, fits[j - 1], chosen[:j], nq, nt)
             if part is not None:
                 break
-        if part is None:
+        if part is None and partner is not None:
+            verdict = chosen[0]
+            ev.append(f"The residual of baseline + {chosen[0]} is still structured ({structure_words(struct)}) and "
+                      f"no flexible version of {chosen[0]} removes it; {partner} does, but without evidence of its "
+                      f"own (above).  {chosen[0]} is named on its own evidence; what the data still want is left "
+                      f"unnamed (remaining structure): an effect outside the catalogue, or a departure of the drum "
+                      f"the free brake parameters do not cover (a lining of another thickness).")
+        elif part is None:
             verdict, selected, indist = "none", [], []
             ev.append(f"But the residual of baseline + {' + '.join(chosen)} is still structured "
                       f"({structure_words(struct)}), and no flexible version of these effects removes it: none "
@@ -270,22 +288,14 @@ def diagnose(data: Measurements, params=None, effects=None, *, noise_torque_Nm: 
     rivalry = _rivals(selected, first_cands, base_cv, validity(full), nq)
     if verdict == "none" and remaining and not rivalry:
         rivalry = closest(base, first_cands, base_cv, BIC_THRESHOLD, validity(full), nq.sigma)
-        if rivalry:
-            ev.append(f"Closest in the catalogue: {' or '.join(a['effects'][0] for a in rivalry)} — "
-                      + "; ".join(f"{a['effects'][0]}: {a['why']}" for a in rivalry)
-                      + f".  Each leaves structure: they point at the physics, they do not explain it"
-                      + (f"; these data cannot tell them apart — {rivalry[0]['tell_apart']['words']}."
-                         if len(rivalry) > 1 else "."))
-    else:
-        for a in rivalry:
-            ev.append(f"{verdict} or {' + '.join(a['effects'])}: these data cannot tell them apart — {a['why']}; "
-                      f"{a['tell_apart']['words']}.")
-    indist = [" + ".join(a["effects"]) for a in rivalry]
+    weak = weak_alternatives(params, base, first_cands, validity(full), nq.sigma) if not chosen and not remaining else []
+    indist = [" + ".join(a["effects"]) for a in rivalry + weak]
+    ev += alternative_words(verdict, rivalry + weak)
     misfit = ("unexplained" if remaining and not any(e["form"] == "partial" for e in selected) else
               "partial" if remaining or any(e["form"] != "exact" for e in selected) else False)
     pool = [base] + [c.fit for c in first_cands]
     if data is not full:                                  # the chosen model, refitted on every row
-        _predictive(data, refined, pool, len(selected), drum, misfit, [a["fit"] for a in rivalry])
+        _predictive(data, refined, pool, len(selected), drum, misfit, [a["fit"] for a in rivalry + weak])
         alts, pool = refined.fit_info.get("alternatives", []), []
         refined = calibrate(full, refined.effects, params, start=refined.values)
         refined.fit_info["alternatives"] = alts
@@ -293,32 +303,14 @@ def diagnose(data: Measurements, params=None, effects=None, *, noise_torque_Nm: 
                   f"{MAX_WINDOW_S:g} s); the chosen model was refitted on all {len(full)} rows.")
         data = full
     refined.covariance = predictive_covariance(refined, drum.fixed_priors(), ess_inflation(refined))
-    _predictive(data, refined, pool, len(selected), drum, misfit, [a["fit"] for a in rivalry])
+    _predictive(data, refined, pool, len(selected), drum, misfit, [a["fit"] for a in rivalry + weak])
     alts = refined.fit_info.get("alternatives") or []
     restate(refined, mixture_variances(refined, alts) or covariance_variances(refined))
     drum.update(refined)
     refined.fit_info["calibration"] = drum.record()
     ev.append(_interval_words(refined, drum, alts))
     return Diagnosis(data, paper, base, nq, nt, first_cands, verdict, indist, refined,
-                     remaining, struct, base_cv, ev, selected, steps, shape, drum, rivalry)
-
-
-def _own_evidence(data, params, chosen, current, struct, fits, nq, nt, steps, ev):
-    """Keep the second of two selected effects only if it predicts held-out tests better than the first
-    re-formed (:func:`rollaway.identify.selection.beyond_reform`); else drop it and keep the first alone."""
-    own = beyond_reform(data, params, chosen[:1], current, current)
-    if own is None:
-        return chosen, current, struct, fits
-    steps.append({"step": "own evidence", "effect": chosen[1], "kept": own["passes"], "beyond_reform": own})
-    if own["passes"]:
-        return chosen, current, struct, fits
-    first = fits[0] if fits and fits[0] is not None and fits[0].effects == chosen[:1] else \
-        calibrate(data, chosen[:1], params, start=current.values)
-    ev.append(f"{chosen[1]} lowers BIC and predicts held-out tests better beside {chosen[0]}, but not beyond "
-              f"{chosen[0]} re-formed (its hook as a linear spline, no second effect): held-out log score "
-              f"{own['heldout_elpd']:+.1f} ± {own['heldout_se']:.1f}, better in {own['better_tests']} of "
-              f"{own['tests']} tests — a partner that only absorbs the first effect's form mismatch; not named.")
-    return chosen[:1], first, structure(first, nq, nt), [first]
+                     remaining, struct, base_cv, ev, selected, steps, shape, drum, rivalry + weak)
 
 
 def _interval_words(fit: FitResult, drum: DrumCalibration, alts) -> str:

@@ -94,6 +94,13 @@ class DrumCalibration:
     def plan(self) -> DrumPlan:
         return DrumPlan(self.params, self.free)
 
+    def held(self) -> tuple[str, ...]:
+        """Brake parameters the automatic choice held as *not needed* by the bare drum (the data test them and
+        agreed with the assumed value); none when the user chose the free set."""
+        if self.selection.startswith("chosen by you"):
+            return ()
+        return tuple(n for n, e in self.entries.items() if e.status == "fixed" and "not needed" in e.reason)
+
     def fixed_priors(self) -> dict[str, float]:
         """Assumed spreads of the brake parameters left at their assumed values (for the bands)."""
         return {n: e.prior_sd for n, e in self.entries.items() if e.prior_sd and e.status != "fitted"}
@@ -250,6 +257,33 @@ def recheck(drum: DrumCalibration, data: Measurements, fit: FitResult, effects: 
     return fit
 
 
+def free_needed(drum: DrumCalibration, data: Measurements, effects: list, fit: FitResult) -> FitResult | None:
+    """Free again the brake parameters the bare drum held as not needed (:meth:`DrumCalibration.held`) that the
+    model with *effects* needs: all freed, then held back one at a time while BIC drops.  When the result has a
+    lower BIC than *fit*, their entries become "fitted" (so :attr:`DrumCalibration.plan` frees them) and the
+    fit is returned; else None and nothing changes."""
+    held = list(drum.held())
+    if not held or fit.jacobian is None:
+        return None
+    best = calibrate(data, effects, DrumPlan(drum.params, drum.free + tuple(held)), start=fit.values)
+    while held:
+        trials = [(calibrate(data, effects, DrumPlan(drum.params, drum.free + tuple(h for h in held if h != n)),
+                             start={k: v for k, v in best.values.items() if k != n}), n) for n in held]
+        trial, name = min(trials, key=lambda t: t[0].bic)
+        if trial.bic >= best.bic:
+            break
+        held.remove(name)
+        best = trial
+    if not held or best.bic >= fit.bic or best.jacobian is None:
+        return None
+    for n in held:
+        e = drum.entries[n]
+        est = best.estimates[n]
+        e.status, e.value, e.stderr, e.ci95, e.prior_sd = "fitted", est.value, est.stderr, tuple(est.ci95), None
+        e.reason = f"needed once {', '.join(effects)} is in the model (BIC {best.bic - fit.bic:+.1f})"
+    return best
+
+
 def _scaled_jacobian(fit: FitResult, jac: np.ndarray, names: list[str]) -> np.ndarray:
     """Jacobian (rows already per noise σ) with columns per assumed spread.  The rows are not rescaled
     by the fit's variance factor: a model still missing an effect fits worse, but the noise — what
@@ -320,4 +354,5 @@ def predictive_covariance(fit: FitResult, priors: dict[str, float], inflation: d
     return Covariance(tuple(names[i] for i in keep), cov[np.ix_(keep, keep)])
 
 
-__all__ = ["DrumCalibration", "ParameterStatus", "calibrate_drum", "predictive_covariance", "MIN_SINGULAR_VALUE"]
+__all__ = ["DrumCalibration", "ParameterStatus", "calibrate_drum", "free_needed", "predictive_covariance",
+           "MIN_SINGULAR_VALUE"]
