@@ -133,3 +133,15 @@ def test_a_none_verdict_names_a_suggested_effect_as_a_weak_alternative_and_clean
         d = diagnose(generate([], sampling="5min", seed=seed, directions=(("uphill",), ("downhill",))[seed % 2],
                               n_forces=2))
         assert d.verdict == "none" and not d.alternatives, d.summary()
+
+
+def test_autocorrelated_residuals_shrink_the_bic_difference_a_rival_must_beat():
+    """A rival 12 BIC behind the verdict is not named on independent residuals, but is where the verdict's residuals
+    are autocorrelated (variance inflation 3: the BIC difference counts three times the samples the data hold)."""
+    rng = np.random.default_rng(7)
+    r = rng.standard_normal(80)
+    best = _cand("friction_temperature", -60.0, r)
+    other = _cand("modulus_temperature", -48.0, r + 0.01 * rng.standard_normal(80))
+    assert rivals(best, [best, other], -10.0) == []
+    out = rivals(best, [best, other], -10.0, inflation=3.0)
+    assert [o["effects"] for o in out] == [["modulus_temperature"]] and out[0]["delta_bic"] == pytest.approx(4.0)

@@ -62,16 +62,19 @@ def not_ruled_out(a, b) -> bool:
     return elpd > -max(HELDOUT_SE * se, SMALL_ELPD)
 
 
-def rivals(best, candidates: list, threshold: float) -> list[dict]:
+def rivals(best, candidates: list, threshold: float, inflation: float = 1.0) -> list[dict]:
     """The step-1 candidates the data do not rule out against *best* (module docstring), best first:
-    ``{"kind": "rival", "effects", "delta_bic" (against best), "heldout_elpd", "heldout_se", "why", "fit"}``."""
+    ``{"kind": "rival", "effects", "delta_bic" (against best), "heldout_elpd", "heldout_se", "why", "fit"}``.
+    *inflation*: the variance inflation of *best*'s autocorrelated residuals (≥ 1,
+    :func:`rollaway.identify.intervals.ess_inflation`); a BIC difference counts every sample as independent, so it
+    is divided by it (the effective sample size's share) before it is compared."""
     out = []
     if best.fit.jacobian is None:
         return out
     for c in candidates:
         if c is best or c.delta_bic >= threshold or c.cv_score is None or c.fit.jacobian is None:
             continue
-        dbic = c.delta_bic - best.delta_bic
+        dbic = (c.delta_bic - best.delta_bic) / max(inflation, 1.0)
         elpd, se = heldout_difference(best.fit, c.fit)
         if dbic < INDISTINGUISHABLE_BIC and elpd > -max(HELDOUT_SE * se, SMALL_ELPD):
             why = (f"BIC within {INDISTINGUISHABLE_BIC:g} ({dbic:+.1f}) and the held-out prediction does not prefer "
