@@ -12,7 +12,9 @@ estimate is flagged unreliable (an upper bound) and the caller must say so.
 
 Robust to outliers and steps: σ is a trimmed scale (mean of e² over |e| < 3.5σ, iterated
 from the MAD, Gaussian-consistent), so a spike or a step touches only the few combinations
-that straddle it and those get no weight.  With ``relative``, σ_i² = a² +
+that straddle it and those get no weight.  A mean of many samples feels the noise's whole
+variance, tails included: ``mean_factor`` is the root mean square of e/σ over |e| < 10σ (≥ 1;
+about 1.09 for Student-t noise with 4 degrees of freedom), the factor on σ/√n of a mean.  With ``relative``, σ_i² = a² +
 (b·y_i)² is fitted to the clipped e² (iteratively reweighted non-negative least squares),
 so a torque noise proportional to the signal is recognised.
 """
@@ -27,6 +29,7 @@ from scipy import optimize, special
 CLIP = 3.5                 # values beyond ±3.5 σ are outliers (a spike, the samples around a step)
 # E[Z²·1(|Z| < c)] for standard normal Z: keeps the trimmed mean square Gaussian-consistent
 CLIP_GAUSS = float(1 - 2 * (CLIP * (math.exp(-0.5 * CLIP * CLIP) / math.sqrt(2 * math.pi)) + special.ndtr(-CLIP)))
+FAR = 10.0                 # beyond ±10 σ a value is a spike or a step, not the noise's tail
 MAX_DEGREE = 4
 MIN_DOF = 10               # fewer effective combinations: the estimate is not reliable
 CURVATURE_P = 0.01         # significance of "the next degree is smaller"
@@ -160,22 +163,23 @@ def noise_estimate(data, values: np.ndarray, time_constant_s: float, relative: b
             break
         a, b = _scale(e, level, relative)
         sig = np.sqrt(a * a + (b * level) ** 2)
-        z = e / np.maximum(sig, 1e-300)
-        z = z[np.abs(z) < CLIP]
+        z_all = e / np.maximum(sig, 1e-300)
+        tails = math.sqrt(float(np.mean(np.where(np.abs(z_all) < FAR, z_all ** 2, 0.0))))
+        z = z_all[np.abs(z_all) < CLIP]
         kurt = float(np.mean(z ** 4) / max(np.mean(z ** 2), 1e-300) ** 2)
         dof = _effective_dof(w, c, kurt)
-        fits.append((p, a, b, float(np.sqrt(np.mean(sig ** 2))), dof))
+        fits.append((p, a, b, float(np.sqrt(np.mean(sig ** 2))), dof, tails))
     if not fits:
         return None
     k, note, reliable = 0, "", True
     while k + 1 < len(fits):
-        (_, _, _, s0, d0), (_, _, _, s1, d1) = fits[k], fits[k + 1]
+        (_, _, _, s0, d0, _), (_, _, _, s1, d1, _) = fits[k], fits[k + 1]
         if d1 < 3 or (s0 / s1) ** 2 <= special.fdtri(d0, d1, 1 - CURVATURE_P):
             break
         k += 1
-    p, a, b, sigma, dof = fits[k]
+    p, a, b, sigma, dof, tails = fits[k]
     if k + 1 == len(fits) and k > 0 and len(fits) > 1:
-        (_, _, _, s_prev, d_prev) = fits[k - 1]
+        (_, _, _, s_prev, d_prev, _) = fits[k - 1]
         if (s_prev / sigma) ** 2 > special.fdtri(d_prev, dof, 1 - CURVATURE_P) and p < MAX_DEGREE:
             reliable = False
             note = (f"the signal still curves between samples at the highest local degree the sampling allows "
@@ -184,4 +188,4 @@ def noise_estimate(data, values: np.ndarray, time_constant_s: float, relative: b
         reliable = False
         note = note or (f"only {dof:.0f} effective degrees of freedom (too few samples per test); σ = {sigma:.3g} "
                         f"is uncertain")
-    return Noise(sigma, dof, a, b, p, reliable, "data", note)
+    return Noise(sigma, dof, a, b, p, reliable, "data", note, mean_factor=max(tails, 1.0))
