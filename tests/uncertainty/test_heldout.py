@@ -96,3 +96,25 @@ def test_a_wrong_model_shows_its_error_and_a_known_misfit_widens_it():
     assert np.isclose(model_error(fit, "partial")["rel_sd"], MISFIT_INFLATION * plain["rel_sd"])
     assert np.isclose(model_error(fit, True)["rel_sd"], MISFIT_INFLATION * plain["rel_sd"])
     assert np.isclose(model_error(fit, "unexplained")["rel_sd"], UNEXPLAINED_INFLATION * plain["rel_sd"])
+
+
+def test_the_saved_model_keeps_a_share_when_a_competitor_predicts_better(tmp_path):
+    """Pseudo-BMA weights where a competitor predicts held-out tests far better than the selected model: the
+    selected one (the saved model) keeps MIN_WEIGHT, so the alternative's weight stays below 1 and the model
+    file's [predictive] table is valid."""
+    from rollaway.model.predictive_record import validate
+    from rollaway.uncertainty.bands import MIN_WEIGHT, alternatives
+
+    def stand_in(scale, seed):
+        n = 80
+        r = scale * np.random.default_rng(seed).standard_normal(n)
+        d = _Data(test_index=np.repeat(np.arange(8), 10), n_tests=8, drum_temp_C=np.zeros(n), torque_Nm=np.zeros(n),
+                  temp_sigma_C=np.ones(n), torque_sigma_Nm=np.ones(n))
+        return SimpleNamespace(data=d, prediction=SimpleNamespace(drum_temp_C=np.zeros(n), torque_Nm=r),
+                               jacobian=np.zeros((2 * n, 0)), names=(), estimates={})
+    selected, better = stand_in(3.0, 0), stand_in(1.0, 1)
+    w = {id(f): wt for wt, f in alternatives(selected, [better])}
+    assert w[id(selected)] >= MIN_WEIGHT / (1 + MIN_WEIGHT) - 1e-12 and w[id(better)] < 1.0
+    (tmp_path / "m.alt1.toml").write_text("")
+    out = validate({"alternatives": [{"weight": round(w[id(better)], 4), "file": "m.alt1.toml"}]}, "m.toml", tmp_path)
+    assert out["alternatives"][0]["weight"] < 1.0

@@ -96,7 +96,8 @@ def model_error(fit, misfit: bool | str = False) -> dict:
 def alternatives(selected, competitors: list, keep=()) -> list[tuple[float, object]]:
     """Pseudo-BMA weights of *selected* and its competitors (leave-one-test-out scores), heaviest first.
     *keep*: competitors the data cannot tell from *selected* (named beside a verdict): never dropped — not
-    for their size, and not for a light weight (floored at :data:`MIN_WEIGHT`)."""
+    for their size, and not for a light weight (floored at :data:`MIN_WEIGHT`).  *selected* keeps at least
+    :data:`MIN_WEIGHT` too (it is the saved model: the alternatives' weights add up to less than 1)."""
     kept = {id(c) for c in keep}
     pool = [selected] + [c for c in competitors if c is not selected and c.jacobian is not None
                          and (sized(c) or id(c) in kept)]
@@ -109,7 +110,7 @@ def alternatives(selected, competitors: list, keep=()) -> list[tuple[float, obje
     z -= z.max(axis=1, keepdims=True)
     w = (np.exp(z) / np.exp(z).sum(axis=1, keepdims=True)).mean(axis=0)
     w = w / w.sum()
-    floor = np.array([id(f) in kept for f in pool])
+    floor = np.array([i == 0 or id(f) in kept for i, f in enumerate(pool)])   # the selected model keeps a share
     w = np.where(floor, np.maximum(w, MIN_WEIGHT), np.where(w >= MIN_WEIGHT, w, 0.0))
     w = w / w.sum()
     out = [(float(wi), f) for wi, f in zip(w, pool) if wi > 0]
