@@ -90,3 +90,15 @@ def test_results_show_in_notebooks():
     r = rollaway_risk(creep(0.15, 0.01), hand_force_N=200, draws=50, **CASE)
     assert "roll-away probability 1.000" in r._repr_html_()
     assert "lining_creep.relaxed_fraction" in creep(0.15, 0.01)._repr_html_()
+
+
+def test_band_shares_follow_the_law_of_total_variance():
+    """Two effect sets with different creep magnitudes and a model error: the shares (parameters within each set,
+    choice between the sets, model error) add up to 1, and the between-set share is what the two sets' means give."""
+    a, b = creep(0.10, 0.01), creep(0.20, 0.01)
+    a._alternatives = [(0.5, b)]
+    a.predictive = {"model_error_rel_sd": 0.01, "model_error_dof": 50}
+    risk = rollaway_risk(a, hand_force_N=300.0, draws=4000, seed=3, **CASE)
+    s = risk.detail["shares"]
+    assert abs(sum(s.values()) - 1.0) < 0.02, s
+    assert s["choice_of_effects"] > s["parameters"] and s["model_error"] > 0.0, s

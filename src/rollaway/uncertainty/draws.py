@@ -194,7 +194,9 @@ def rollaway_risk(model: DrumModel, *, hand_force_N: float, grade_pct: float, di
                                                                                       method="inverted_cdf"))
           for q in PERCENTILES}
     no_eps = brake / (1.0 + eps)                  # the margin scales with the torque: ε divides out exactly
-    v_par = float(np.var(no_eps[owner == 0])) if counts[0] > 1 else 0.0
+    # law of total variance over the effect sets: within (parameters) + between (choice of effects)
+    groups = [no_eps[owner == k] for k in range(len(parts)) if counts[k] > 0]
+    v_par = sum(g.size * float(np.var(g)) for g in groups) / draws
     v_mix, v_all = float(np.var(no_eps)), float(np.var(brake))
     total = max(v_all, 1e-300)
     shares = {"parameters": min(v_par / total, 1.0), "choice_of_effects": max(v_mix - v_par, 0.0) / total,
