@@ -269,7 +269,9 @@ def beyond_reform(data, params, chosen: list[str], current: FitResult, two: FitR
     *refree*: brake parameters the drum calibration held at their assumed values although the data test
     them ("not needed" without any effect): both compared fits free them.  A brake parameter that was not
     needed by the bare drum can be needed once the first effect is in, and a second effect that stands in
-    for it (a gap or a radial contraction for a lining of another thickness) is then no discovery."""
+    for it (a gap or a radial contraction for a lining of another thickness) is then no discovery; with them
+    freed, the second effect must also still lower BIC below :data:`BIC_THRESHOLD` against the first effect alone
+    (``delta_bic_refreed``)."""
     from rollaway.effects import get_effect
     from rollaway.identify.ambiguity import HELDOUT_SE, SMALL_ELPD
     from rollaway.identify.shape import covariate_of, flexible_effect, shape_hook
@@ -281,12 +283,14 @@ def beyond_reform(data, params, chosen: list[str], current: FitResult, two: FitR
     if flex is None:
         return None
     refree = [n for n in refree if n not in getattr(params, "free", ())]
+    delta_bic = None
     if refree:
         from rollaway.identify.model import DrumPlan
         params = DrumPlan(params.params, tuple(params.free) + tuple(refree))
         two = calibrate(data, two.effects, params, start=two.values)
         if two.jacobian is None:
             return None
+        delta_bic = two.bic - calibrate(data, chosen, params, start=current.values).bic
     reform = calibrate(data, [flex], params, start=current.values, max_iterations=REFORM_ITERATIONS)
     if reform.jacobian is None:
         return None
@@ -310,8 +314,10 @@ def beyond_reform(data, params, chosen: list[str], current: FitResult, two: FitR
     better = int((total > 0).sum())
     out.update(heldout_elpd=float(total.sum()), heldout_se=se, reform_effect=flex.name, better_tests=better,
                tests=int(total.size), per_test=[float(x) for x in total],
+               delta_bic_refreed=delta_bic,
                passes=bool(ok and total.sum() > max(SECOND_EFFECT_SE * se, SMALL_ELPD) and 2 * better > total.size
-                           and total.sum() - total.max() > SMALL_ELPD))
+                           and total.sum() - total.max() > SMALL_ELPD
+                           and (delta_bic is None or delta_bic < BIC_THRESHOLD)))
     return out
 
 
