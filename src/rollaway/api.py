@@ -269,7 +269,7 @@ def diagnose(data, **options):
 
     Returns
     -------
-    rollaway.identify.diagnose.Diagnosis
+    rollaway.identify.diagnosis.Diagnosis
         ``.verdict`` (effect name or ``"none"``), ``.evidence``, ``.model`` (the calibrated
         :class:`DrumModel`, with covariance), ``.save_model(path)``, ``.report(path)`` (HTML).
     """

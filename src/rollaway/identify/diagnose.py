@@ -19,124 +19,25 @@
 """
 from __future__ import annotations
 
-import json
-from dataclasses import dataclass, field
-
 import numpy as np
 
 from rollaway.effects import available_effects, get_effect
-from rollaway.identify.ambiguity import alternative_words, closest, rivals, tell_apart, verdict_line, weak_alternatives
+from rollaway.identify.ambiguity import alternative_words, closest, rivals, tell_apart, weak_alternatives
 from rollaway.identify.calibrate import FitResult, calibrate, evaluate
 from rollaway.identify.coarse import MAX_WINDOW_S, coarsen
 from rollaway.identify.drum import DrumCalibration, calibrate_drum, free_needed, predictive_covariance, recheck
-from rollaway.identify.export import CalibratedModelMixin
+from rollaway.identify.diagnosis import Diagnosis
 from rollaway.identify.fitting import single_blas_thread
 from rollaway.identify.intervals import covariance_variances, ess_inflation, mixture_variances, restate
 from rollaway.bench.measurements import Measurements
 from rollaway.bench.noise import Noise, noise_estimate, sample_sigma
-from rollaway.identify.diagnose_words import describe_residual, score_text, no_candidate_words, noise_words, structure_words
+from rollaway.identify.diagnose_words import describe_residual, no_candidate_words, noise_words, structure_words
 from rollaway.identify.selection import (BIC_THRESHOLD, Candidate, cv_score, eliminate, exchange, folds, forward_step,
                                          has_per_test, own_evidence, per_test_signature, structure, weighted_chi2)
-from rollaway.jsonsafe import to_jsonable
 from rollaway.uncertainty.bands import validity
 
 MAX_EFFECTS = 2              # forward selection stops after this many effects (a third rarely survives CV)
 PARTIAL_SHARE = 0.5          # "explains most of the baseline's excess error"
-
-
-@dataclass
-class Diagnosis(CalibratedModelMixin):
-    """What :func:`diagnose` found: ``verdict`` (the missing effect, or ``"none"``), the evidence, the fits.
-
-    ``model`` / ``save_model(path)``: the calibrated drum model of the verdict; ``report(path)``: an HTML page.
-    """
-
-    _command = "diagnose"
-    data: Measurements
-    paper: FitResult
-    baseline: FitResult
-    noise_torque: Noise
-    noise_temp: Noise
-    candidates: list[Candidate]          # first selection step (against the baseline), best first
-    verdict: str
-    indistinguishable_from: list[str]
-    refined: FitResult
-    remaining_structure: bool
-    structure: dict
-    baseline_cv: float | None
-    evidence: list[str] = field(default_factory=list)
-    effects: list[dict] = field(default_factory=list)     # selected, in order: {"effect", "form", ...}
-    steps: list[dict] = field(default_factory=list)       # forward-selection log
-    shape: dict | None = None                              # flexible form of a "partial" effect
-    drum: DrumCalibration | None = None                    # which brake parameters the data identify
-    alternatives: list[dict] = field(default_factory=list)  # effect sets the data cannot rule out (ambiguity.py)
-
-    def as_dict(self) -> dict:
-        def rm(f):
-            return {"rmse_torque_Nm": f.rmse_torque_Nm, "rmse_temp_C": f.rmse_temp_C, "bic": f.bic, "aic": f.aic,
-                    "parameters": {k: e.as_dict() for k, e in f.estimates.items()}, **f.statistics()}
-        return {"data": {"source": self.data.source, "samples": len(self.data), "tests": self.data.n_tests,
-                         **self.data.rows_info()},
-                "noise": {"torque_Nm": self.noise_torque.sigma, "temp_C": self.noise_temp.sigma,
-                          "torque": self.noise_torque.as_dict(), "temperature": self.noise_temp.as_dict()},
-                "paper": {"rmse_torque_Nm": self.paper.rmse_torque_Nm, "rmse_temp_C": self.paper.rmse_temp_C},
-                "baseline": {**rm(self.baseline), "cv_score": self.baseline_cv},
-                "candidates": [c.as_dict() for c in self.candidates],
-                "verdict": self.verdict, "verdict_line": verdict_line(self.verdict, self.alternatives),
-                "alternatives": [{k: v for k, v in a.items() if k != "fit"} for a in self.alternatives],
-                "effects": self.effects,
-                "indistinguishable_from": self.indistinguishable_from,
-                "refined": {"effects": self.refined.effects, **rm(self.refined)},
-                "remaining_structure": self.remaining_structure, "structure": self.structure,
-                "steps": self.steps, "shape": self.shape, "evidence": self.evidence,
-                "drum": None if self.drum is None else self.drum.as_dict(),
-                "predictive": {**(self.refined.fit_info.get("predictive") or {}),
-                               "alternatives": [{"effects": f.effects, "weight": w}
-                                                for w, f in self.refined.fit_info.get("alternatives") or []]}}
-
-    def to_json(self, path=None) -> str:
-        text = json.dumps(to_jsonable(self.as_dict()), indent=2)
-        if path is not None:
-            with open(path, "w", encoding="utf-8") as fh:
-                fh.write(text + "\n")
-        return text
-
-    def summary(self) -> str:
-        forms = ", ".join(f"{e['effect']} ({e['form']})" for e in self.effects)
-        lines = [f"verdict: {verdict_line(self.verdict, self.alternatives)}" + (f"   effects: {forms}" if len(self.effects) > 1 or
-                                                any(e["form"] != "exact" for e in self.effects) else "")]
-        lines += [f"  {w}" for w in self.evidence]
-        lines.append("")
-        lines.append(f"{'candidate (step 1)':<28}{'ΔBIC':>9}{'torque RMSE':>13}{'temp RMSE':>11}{'CV score':>10}")
-        lines.append(f"{'(baseline)':<28}{0.0:>9.1f}{self.baseline.rmse_torque_Nm:>13.3g}"
-                     f"{self.baseline.rmse_temp_C:>11.3g}{score_text(self.baseline_cv):>10}")
-        for c in self.candidates:
-            lines.append(f"{c.effect:<28}{c.delta_bic:>9.1f}{c.fit.rmse_torque_Nm:>13.3g}{c.fit.rmse_temp_C:>11.3g}"
-                         f"{score_text(c.cv_score):>10}")
-        if self.drum is not None:
-            lines += ["", self.drum.report()]
-        lines.append("")
-        lines.append(self.refined.report())
-        return "\n".join(lines)
-
-    def __repr__(self):
-        return self.summary()
-
-    def _repr_html_(self) -> str:  # notebooks
-        from rollaway.display import diagnosis_html
-        return diagnosis_html(self)
-
-    def report(self, path) -> None:
-        """Write a self-contained HTML report (verdict, evidence, figures) to *path*."""
-        from rollaway.identify.report import diagnosis_report
-        diagnosis_report(self, path)
-
-    def _calibrated_fit(self):
-        return self.refined
-
-    def again(self, data: Measurements) -> "Diagnosis":
-        """Diagnose other measurements (a synthetic campaign of the same design) with the default options."""
-        return diagnose(data)
 
 
 # -- noise ----------------------------------------------------------------------------------
@@ -310,7 +211,7 @@ def diagnose(data: Measurements, params=None, effects=None, *, noise_torque_Nm: 
     refined.fit_info["calibration"] = drum.record()
     ev.append(_interval_words(refined, drum, alts))
     return Diagnosis(data, paper, base, nq, nt, first_cands, verdict, indist, refined,
-                     remaining, struct, base_cv, ev, selected, steps, shape, drum, rivalry + weak)
+                     remaining, struct, base_cv, ev, selected, steps, shape, drum, rivalry + weak, diagnose)
 
 
 def _interval_words(fit: FitResult, drum: DrumCalibration, alts) -> str:
