@@ -109,8 +109,9 @@ def test_questions_beyond_the_data_are_flagged_and_widened():
         out = rollaway_risk(model, **q, **kw)
         assert any(words in f for f in out.flags), (words, out.flags)
         assert "BEYOND THE DATA" in out.band_words()
-        rel = width(out) / out.brake_margin_percentiles["p50"]
-        assert rel > width(inside) / inside.brake_margin_percentiles["p50"], words
+        assert out.detail["model_error_rel_sd"] > 1.2 * inside.detail["model_error_rel_sd"], words   # widened
+        rel = width(out) / out.brake_margin_percentiles["p50"]       # (the parameters' share may shrink at 450 N)
+        assert rel > 0.9 * width(inside) / inside.brake_margin_percentiles["p50"], words
 
 
 def test_extrapolation_factor_grows_with_distance():
@@ -164,3 +165,33 @@ def test_bands_beyond_the_tested_forces_temperatures_and_direction_cover():
     for kind in ("exact", "other"):          # per kind of hidden effect: the catalogue's form, another form
         sub = [r["covered"] for r in rows if r["hidden"] and EFFECTS[r["hidden"]][0] == kind]
         assert np.mean(sub) >= 0.85, (kind, np.mean(sub), len(sub))
+
+
+def test_an_alternative_must_pin_its_brake_parameters_within_their_assumed_spread():
+    from types import SimpleNamespace as NS
+
+    from rollaway.uncertainty.bands import sized
+    est = lambda v, s: NS(value=v, stderr=s, at_bound=False)   # noqa: E731
+    good = NS(estimates={"mu_drum": est(0.4, 0.01), "u6_offset_m": est(-1e-5, 1e-6), "lining_creep.c": est(1.0, 0.1)})
+    assert sized(good)
+    assert not sized(NS(estimates={**good.estimates, "u6_offset_m": est(5.6e-5, 2.6)}))     # offset ± 2.6 m
+    assert not sized(NS(estimates={**good.estimates, "mu_drum": est(0.4, float("nan"))}))
+    assert not sized(NS(estimates={**good.estimates, "lining_creep.c": est(1.0, 0.5)}))
+
+
+def test_no_alternative_with_per_test_values_or_unpinned_brake_parameters():
+    """A fit with a zero offset per test refits the held-out test's own offset: its held-out score flatters it, and
+    on one held-out campaign it took 94 % of the mixture with the eq. (24) offset at ± 2.6 m (bands 0–22)."""
+    from rollaway.model.drum_parameters import FREE_PARAMETERS
+    from tests.uncertainty.band_questions import campaign as question_campaign
+    for i in (43, 31):                      # a quadratic friction fade on the paper's drum and on another
+        rows = question_campaign(i, draws=100)
+        assert rows and all(r["half_width"] < 1.0 for r in rows), rows
+    data = generate(["friction_quadratic"], seed=7743, mu=0.343, h=38.2, forces=np.linspace(180.0, 360.0, 4),
+                    t0_range=(100.0, 250.0))
+    for w, alt in diagnose(data).model.alternatives:
+        assert not any("zero_offset" in e for e in alt.name.split(" + ")), alt.name
+        fitted = alt.fitted_values()
+        for n, var in zip(alt.covariance.names, np.diag(alt.covariance.matrix)):
+            if n in FREE_PARAMETERS:
+                assert np.sqrt(var) <= 1.5 * FREE_PARAMETERS[n].spread(fitted[n]), (alt.name, n)

@@ -273,7 +273,8 @@ def _predictive(data, refined: FitResult, pool: list[FitResult], n_effects: int,
     (:func:`rollaway.uncertainty.bands.model_error`).  *keep*: fits the data
     cannot tell from *refined* (named beside the verdict): always among the alternatives.  A fit competes when
     its BIC is within :data:`rollaway.uncertainty.bands.COMPETING_BIC` of *refined*'s or the held-out prediction
-    does not rule it out (BIC alone is overconfident where residuals are autocorrelated)."""
+    does not rule it out (BIC alone is overconfident where residuals are autocorrelated); not a fit with per-test
+    values (a zero offset per test): its held-out score refits the held-out test's own values."""
     from rollaway.identify.ambiguity import not_ruled_out
     from rollaway.uncertainty.bands import COMPETING_BIC, alternatives, model_error
     from rollaway.model.predictive_record import record
@@ -282,6 +283,7 @@ def _predictive(data, refined: FitResult, pool: list[FitResult], n_effects: int,
     if not pool:                  # the alternatives were weighed on the selection's rows (already attached)
         return
     comp = [f for f in pool if f is not refined and f.jacobian is not None and len(f.effects) <= 1
+            and not f.model.per_test_parameters()       # refits the held-out test's own values: no fair score
             and (f.bic - refined.bic < COMPETING_BIC or not_ruled_out(refined, f))] if n_effects <= 1 else []
     mix = alternatives(refined, comp + [f for f in keep if all(f is not g for g in comp)], keep=keep)
     alts = []

@@ -11,7 +11,7 @@ question also depends on which effects were chosen and on how wrong the chosen f
   samples with the lowest predicted torque), less what a right model would give there: the
   measurement noise and the re-calibration without the test
   (:func:`rollaway.uncertainty.heldout.loto_parameter_variance`; that parameter error is drawn apart).
-  Their root mean square ``rel_sd`` (with ``dof`` = tests − 1) is a multiplicative torque
+  Their root mean square ``rel_sd`` (about zero, not their mean: ``dof`` = tests) is a multiplicative torque
   error ε ~ rel_sd·t_dof drawn with every parameter draw: jackknife-style, distribution-free
   in its scores, Student-t in its use (a handful of tests cannot give a finite 90 % conformal
   quantile).  When the saved form is known to leave structure, the held-out tests saw that misfit
@@ -88,7 +88,7 @@ def model_error(fit, misfit: bool | str = False) -> dict:
     floor = math.sqrt(float(np.mean(noise))) if noise else 0.0
     if misfit:
         rel_sd *= UNEXPLAINED_INFLATION if misfit == "unexplained" else MISFIT_INFLATION
-    return {"rel_sd": rel_sd, "dof": max(len(scores) - 1, 1), "tests": len(scores),
+    return {"rel_sd": rel_sd, "dof": max(len(scores), 1), "tests": len(scores),
             "per_test": [float(x) for x in scores], "misfit": misfit, "floor_rel_sd": floor,
             "excess_ms": excess, "refit_ms": float(np.mean(refit)) if scores else 0.0}
 
@@ -119,10 +119,15 @@ def alternatives(selected, competitors: list, keep=()) -> list[tuple[float, obje
 
 def sized(fit) -> bool:
     """True when the data size every effect parameter of *fit* (relative standard error ≤
-    :data:`MAX_RELATIVE_SE`, not at a bound): an effect the data cannot size is no competing
-    explanation — its draws would wander through magnitudes the data never supported."""
+    :data:`MAX_RELATIVE_SE`, not at a bound) and pin each brake parameter it frees better than that
+    parameter's assumed spread: an effect set the data cannot size is no competing explanation — its
+    draws would wander through magnitudes (and brake parameters) the data never supported."""
+    from rollaway.model.drum_parameters import FREE_PARAMETERS
     for name, e in fit.estimates.items():
-        if "." not in name:
+        if "." not in name:        # a brake parameter: the data must pin it better than its assumed spread
+            spec = FREE_PARAMETERS.get(name)
+            if spec is not None and not (np.isfinite(e.stderr) and e.stderr <= spec.spread(e.value)):
+                return False
             continue
         if e.at_bound or not np.isfinite(e.stderr) or e.stderr > MAX_RELATIVE_SE * max(abs(e.value), 1e-300):
             return False
