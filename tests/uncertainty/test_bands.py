@@ -151,13 +151,14 @@ def test_saved_model_keeps_the_predictive_record_and_bad_tables_are_one_line_err
         validate({"alternatives": [{"weight": 0.2, "file": "gone.toml"}]}, "m.toml", tmp_path)
 
 
-@pytest.mark.skipif(not os.environ.get("ROLLAWAY_SLOW"), reason="24 campaigns (~4 min); set ROLLAWAY_SLOW=1")
+@pytest.mark.skipif(not os.environ.get("ROLLAWAY_SLOW"), reason="48 campaigns (~2 min); set ROLLAWAY_SLOW=1")
 def test_bands_beyond_the_tested_forces_temperatures_and_direction_cover():
     """tests/uncertainty/band_questions.py at 1-min sampling: 135 N and 450 N after tests at 180–360 N, T_0 280 °C
     after ≤ 250 °C, the untested direction; ≥ 0.9 overall, ≥ 0.85 per question and per kind of hidden effect, no
-    band wholly on the wrong side."""
+    band wholly on the wrong side.  48 campaigns (32 questions of each kind, 16 facing the untested way): with 16 a
+    band of exactly 90 % falls below 0.85 one time in five."""
     from tests.uncertainty.band_questions import QUESTIONS, campaign, summary
-    rows = [r for i in range(24) for r in campaign(i, sampling="1min")]
+    rows = [r for i in range(48) for r in campaign(i, sampling="1min")]
     s = summary(rows)
     assert s["coverage"] >= 0.9 and s["confident_wrong"] == 0, s
     for q in QUESTIONS:

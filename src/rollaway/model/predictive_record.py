@@ -7,7 +7,7 @@ draws)::
     [predictive]
     model_error_rel_sd = 0.006         # leave-one-test-out relative torque error where margins are decided
     model_error_floor_rel_sd = 0.004   # the noise's resolution of that error: the least used beyond the tested range
-    model_error_dof = 8                # the tests (the measured error is drawn from a Student-t)
+    model_error_dof = 7                # tests − 1 (the error is drawn from a Student-t)
     tested_hand_force_N = [190.0, 350.0]
     tested_initial_temp_C = [104.2, 296.0]
     tested_duration_s = 3600.0

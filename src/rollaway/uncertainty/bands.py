@@ -11,7 +11,7 @@ question also depends on which effects were chosen and on how wrong the chosen f
   samples with the lowest predicted torque), less what a right model would give there: the
   measurement noise and the re-calibration without the test
   (:func:`rollaway.uncertainty.heldout.loto_parameter_variance`; that parameter error is drawn apart).
-  Their root mean square ``rel_sd`` (about zero, not their mean: ``dof`` = tests) is a multiplicative torque
+  Their root mean square ``rel_sd`` (with ``dof`` = tests − 1) is a multiplicative torque
   error ε ~ rel_sd·t_dof drawn with every parameter draw: jackknife-style, distribution-free
   in its scores, Student-t in its use (a handful of tests cannot give a finite 90 % conformal
   quantile).  When the saved form is known to leave structure, the held-out tests saw that misfit
@@ -88,7 +88,7 @@ def model_error(fit, misfit: bool | str = False) -> dict:
     floor = math.sqrt(float(np.mean(noise))) if noise else 0.0
     if misfit:
         rel_sd *= UNEXPLAINED_INFLATION if misfit == "unexplained" else MISFIT_INFLATION
-    return {"rel_sd": rel_sd, "dof": max(len(scores), 1), "tests": len(scores),
+    return {"rel_sd": rel_sd, "dof": max(len(scores) - 1, 1), "tests": len(scores),
             "per_test": [float(x) for x in scores], "misfit": misfit, "floor_rel_sd": floor,
             "excess_ms": excess, "refit_ms": float(np.mean(refit)) if scores else 0.0}
 
