@@ -41,7 +41,8 @@ def test_diagnose_report_statistics(run_cli, creep_csv, tmp_path):
     assert json.loads(out)["verdict"] == "lining_creep"
     page = visible((tmp_path / "d.html").read_text())
     for needle in ("Correlation of the joint (temperature + torque) stage", "reduced χ²", "evaluations", "initial",
-                   "Leave-one-test-out score", "Missing effect found: lining_creep"):
+                   "Leave-one-test-out score", "Missing effect found: lining_creep", "Predictive record",
+                   "lowest tested force predicted from the others"):
         assert needle in page, needle
     assert "*relative*" not in page and not re.search(r"font-size:\s*[0-9]px", page)
 

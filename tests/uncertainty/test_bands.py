@@ -141,12 +141,15 @@ def test_saved_model_keeps_the_predictive_record_and_bad_tables_are_one_line_err
     path = d.save_model(tmp_path / "m.toml")
     m = DrumModel(path)
     assert m.predictive["model_error_rel_sd"] >= 0 and m.predictive["tested_directions"] == ["downhill", "uphill"]
+    assert m.predictive["model_error_edge_low"] == pytest.approx(d.refined.fit_info["predictive"]["model_error_edge_low"])
     for w, alt in m.alternatives:
         assert 0 < w < 1 and alt.covariance is not None
     with pytest.raises(UserError, match="predictive.tested_hand_force_N"):
         validate({"tested_hand_force_N": [300.0, 200.0]}, "m.toml")
     with pytest.raises(UserError, match="unknown key 'predictive.model_eror_rel_sd'"):
         validate({"model_eror_rel_sd": 0.1}, "m.toml")
+    with pytest.raises(UserError, match=r"predictive.model_error_edge_low' must be \[relative error"):
+        validate({"model_error_edge_low": [0.01, 0.0]}, "m.toml")
     with pytest.raises(UserError, match="does not exist"):
         validate({"alternatives": [{"weight": 0.2, "file": "gone.toml"}]}, "m.toml", tmp_path)
 
@@ -196,3 +199,27 @@ def test_no_alternative_with_per_test_values_or_unpinned_brake_parameters():
         for n, var in zip(alt.covariance.names, np.diag(alt.covariance.matrix)):
             if n in FREE_PARAMETERS:
                 assert np.sqrt(var) <= 1.5 * FREE_PARAMETERS[n].spread(fitted[n]), (alt.name, n)
+
+
+def test_edge_error_sees_a_wrong_force_scaling_and_not_a_right_one():
+    """The lowest tested force predicted from the others: on a drum whose eq. (24) offset is not the paper's, the
+    calibration that holds the paper's slope and offset (μ_d takes up the mean) errs there by more than 10 %, the
+    one that frees them by little; the error at the question's distance scales from the edge's."""
+    from rollaway.identify.calibrate import calibrate
+    from rollaway.identify.model import DrumPlan
+    from rollaway.model.parameters import load_parameters
+    from rollaway.uncertainty.bands import edge_error
+    from rollaway.uncertainty.predictive import edge_sd
+    paper = load_parameters("paper")
+    right, wrong = [], []
+    for seed in range(4):
+        data = generate([], seed=300 + seed, drum=OTHER_DRUMS["eq24_own"], forces=np.linspace(150.0, 400.0, 4))
+        data.torque_sigma_Nm, data.temp_sigma_C = np.full(len(data), 8.0), np.full(len(data), 1.5)
+        free = ("mu_drum", "heat_transfer_W_m2K", "shoe_arm_ratio")
+        for out, plan in ((right, free + ("u6_slope_m_per_N", "u6_offset_m")), (wrong, free)):
+            out.append(edge_error(calibrate(data, (), DrumPlan(paper, plan)), "low")["rel_sd"])
+    assert min(wrong) > 0.1 and np.median(right) < 0.03 and np.mean(right) < 0.5 * np.mean(wrong), (right, wrong)
+    pred = {"tested_hand_force_N": [150.0, 400.0], "model_error_edge_low": [0.1, 0.5]}
+    assert edge_sd(pred, 250.0) == 0.0 and edge_sd(pred, 500.0) == 0.0       # inside; above: no high edge measured
+    assert edge_sd(pred, 100.0) == pytest.approx(0.1 * (50.0 / 250.0) / 0.5)
+    assert edge_sd(pred, 100.0, 50.0) == pytest.approx(0.1 * 1.0 / 0.5)         # torque level: (150−50)/(100−50) − 1

@@ -312,6 +312,9 @@ def diagnosis_report(diag, path) -> None:
         alts = diag.refined.fit_info.get("alternatives") or []
         rows = [["model error (leave-one-test-out, relative torque, 1σ)",
                  f"{pred['model_error_rel_sd']:.3%} (Student-t, {pred['model_error_dof']} dof)"],
+                *[[f"{side} tested force predicted from the others (relative torque, 1σ)",
+                   f"{pred[k][0]:.3%} at distance {pred[k][1]:.2f}"]
+                  for side in ("lowest", "highest") if (k := f"model_error_edge_{side[:-3]}") in pred],
                 ["tested hand force [N]", "{:g} – {:g}".format(*pred["tested_hand_force_N"])],
                 ["tested T_0 [°C]", "{:.0f} – {:.0f}".format(*pred["tested_initial_temp_C"])],
                 ["tested hold [s]", f"{pred['tested_duration_s']:g}"],

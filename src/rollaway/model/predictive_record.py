@@ -8,6 +8,8 @@ draws)::
     model_error_rel_sd = 0.006         # leave-one-test-out relative torque error where margins are decided
     model_error_floor_rel_sd = 0.004   # the noise's resolution of that error: the least used beyond the tested range
     model_error_dof = 7                # tests − 1 (the error is drawn from a Student-t)
+    model_error_edge_low = [0.004, 0.6]  # [rel_sd, distance]: the lowest tested force predicted from the others
+    model_error_edge_high = [0.002, 0.4] # ... and the highest (three or more tested forces)
     tested_hand_force_N = [190.0, 350.0]
     tested_initial_temp_C = [104.2, 296.0]
     tested_duration_s = 3600.0
@@ -24,6 +26,7 @@ from pathlib import Path
 from rollaway.errors import UserError, suggest
 
 KEYS = ("model_error_rel_sd", "model_error_floor_rel_sd", "model_error_dof", "model_error_tests",
+        "model_error_edge_low", "model_error_edge_high",
         "tested_hand_force_N", "tested_initial_temp_C", "tested_duration_s", "tested_directions", "alternatives")
 
 
@@ -35,6 +38,8 @@ def record(model_error: dict, validity: dict, alternatives=()) -> dict:
            "tested_hand_force_N": list(validity["hand_force_N"]),
            "tested_initial_temp_C": list(validity["initial_temp_C"]),
            "tested_duration_s": float(validity["duration_s"]), "tested_directions": list(validity["directions"])}
+    for side, e in model_error.get("edges", {}).items():
+        out[f"model_error_edge_{side}"] = [float(e["rel_sd"]), float(e["distance"])]
     if alternatives:
         out["alternatives"] = [dict(a) for a in alternatives]
     return out
@@ -58,6 +63,12 @@ def validate(table, where: str, base_dir: Path | None = None) -> dict:
         v = out.get(key)
         if v is not None and not (isinstance(v, int) and not isinstance(v, bool) and v >= 1):
             raise UserError(f"{where}: key 'predictive.{key}' must be a whole number ≥ 1, got {v!r}")
+    for key in ("model_error_edge_low", "model_error_edge_high"):
+        v = out.get(key)
+        if v is not None and not (isinstance(v, list) and len(v) == 2 and all(_real(x) and math.isfinite(x) for x in v)
+                                  and 0 <= v[0] <= 10 and v[1] > 0):
+            raise UserError(f"{where}: key 'predictive.{key}' must be [relative error ≥ 0, distance > 0], e.g. "
+                            f"[0.004, 0.6]; got {v!r}")
     for key in ("tested_hand_force_N", "tested_initial_temp_C"):
         v = out.get(key)
         if v is not None and not (isinstance(v, list) and len(v) == 2 and all(_real(x) and math.isfinite(x) for x in v)

@@ -38,7 +38,8 @@ import math
 
 import numpy as np
 
-from rollaway.uncertainty.heldout import loto_parameter_variance, loto_residuals, loto_scores
+from rollaway.uncertainty.heldout import (held_out, loto_parameter_variance, loto_residuals, loto_scores,
+                                           parameter_variance)
 
 COMPETING_BIC = 6.0          # effect sets within this ΔBIC of the selected one compete for weight
 MIN_WEIGHT = 0.02            # lighter alternatives are dropped (weights renormalised)
@@ -60,27 +61,40 @@ def validity(data) -> dict:
             "directions": sorted({"downhill" if s > 0 else "uphill" for s in np.unique(data.sign)})}
 
 
+def _margin_score(fit, k: int, loo_torque_Nm: np.ndarray, weights: np.ndarray) -> tuple[float, float] | None:
+    """(score, noise variance) of test *k*: its mean relative held-out torque error over the
+    :data:`MARGIN_SHARE` of its samples with the least predicted torque, and that mean's variance from the noise
+    alone.  Writes the score's weights on the standardised residuals into *weights* (rows of [temperature | torque])."""
+    d = fit.data
+    n = len(d)
+    pred = fit.prediction.torque_Nm
+    rows = np.flatnonzero(d.test_index == k)
+    if rows.size == 0:
+        return None
+    m = max(3, int(math.ceil(MARGIN_SHARE * rows.size)))
+    low = rows[np.argsort(pred[rows])[:m]]
+    level = np.maximum(np.abs(pred[low]), 1e-9)
+    weights[n + low] = d.torque_sigma_Nm[low] / level / low.size          # score = Σ w·(standardised residual)
+    return float(np.mean(loo_torque_Nm[low] / level)), float(np.sum(weights[n + low] ** 2))
+
+
 def model_error(fit, misfit: bool | str = False) -> dict:
     """Relative torque error of leave-one-test-out predictions where each test's margin is decided
     (× :data:`MISFIT_INFLATION` when the model's form is known to leave structure, *misfit* true or
-    ``"partial"``; × :data:`UNEXPLAINED_INFLATION` when *misfit* is ``"unexplained"``: no catalogue form clears it)."""
+    ``"partial"``; × :data:`UNEXPLAINED_INFLATION` when *misfit* is ``"unexplained"``: no catalogue form clears it),
+    and at each edge of the tested hand forces the error of predicting that force from the others
+    (:func:`edge_error`)."""
     d = fit.data
     n = len(d)
     loo = loto_residuals(fit)[n:] * d.torque_sigma_Nm            # model − measured [N·m], own test held out
-    pred = fit.prediction.torque_Nm
     scores, noise, tests = [], [], []
     weights = np.zeros(2 * n)
     for k in range(d.n_tests):
-        rows = np.flatnonzero(d.test_index == k)
-        if rows.size == 0:
-            continue
-        m = max(3, int(math.ceil(MARGIN_SHARE * rows.size)))
-        low = rows[np.argsort(pred[rows])[:m]]
-        level = np.maximum(np.abs(pred[low]), 1e-9)
-        scores.append(float(np.mean(loo[low] / level)))
-        weights[n + low] = d.torque_sigma_Nm[low] / level / low.size     # score = Σ w·(standardised residual)
-        noise.append(float(np.sum(weights[n + low] ** 2)))
-        tests.append(k)
+        got = _margin_score(fit, k, loo, weights)
+        if got is not None:
+            scores.append(got[0])
+            noise.append(got[1])
+            tests.append(k)
     refit = loto_parameter_variance(fit, weights)[tests] if tests else np.zeros(len(tests))
     s2 = np.asarray(scores) ** 2
     excess = float(np.mean(s2) - np.mean(noise) - np.mean(refit)) if scores else 0.0
@@ -90,7 +104,50 @@ def model_error(fit, misfit: bool | str = False) -> dict:
         rel_sd *= UNEXPLAINED_INFLATION if misfit == "unexplained" else MISFIT_INFLATION
     return {"rel_sd": rel_sd, "dof": max(len(scores) - 1, 1), "tests": len(scores),
             "per_test": [float(x) for x in scores], "misfit": misfit, "floor_rel_sd": floor,
-            "excess_ms": excess, "refit_ms": float(np.mean(refit)) if scores else 0.0}
+            "excess_ms": excess, "refit_ms": float(np.mean(refit)) if scores else 0.0,
+            "edges": {side: e for side in ("low", "high") if (e := edge_error(fit, side)) is not None}}
+
+
+def edge_error(fit, side: str) -> dict | None:
+    """The relative torque error of predicting the tests at the lowest (*side* ``"low"``) or highest tested hand
+    force from the model calibrated on the others — an extrapolation in hand force the data made — net of the noise
+    and of the re-calibration (as :func:`model_error`): ``{"rel_sd", "distance", "tests"}``, *distance* that
+    extrapolation's (:func:`rollaway.uncertainty.predictive.force_distance` from the other forces' range).  None
+    without a Jacobian or with fewer than three tested hand forces (two cannot be extrapolated from one)."""
+    from rollaway.uncertainty.predictive import force_distance
+    d = fit.data
+    if fit.jacobian is None or not fit.names or getattr(d, "hand_force_N", None) is None:
+        return None
+    per_test = np.array([d.hand_force_N[d.test_index == k][0] if np.any(d.test_index == k) else np.nan
+                         for k in range(d.n_tests)])
+    levels = np.unique(np.round(per_test[np.isfinite(per_test)], 1))
+    if levels.size < 3:
+        return None
+    edge, rest = (levels[0], levels[1:]) if side == "low" else (levels[-1], levels[:-1])
+    held = np.flatnonzero(np.abs(per_test - edge) < 0.05)
+    g, loo_g, solve = held_out(fit, held)
+    n = len(d)
+    loo = np.zeros(2 * n)
+    loo[g] = loo_g
+    loo_torque = loo[n:] * d.torque_sigma_Nm
+    s2, noise, refit = [], [], []
+    for k in held:
+        weights = np.zeros(2 * n)
+        got = _margin_score(fit, int(k), loo_torque, weights)
+        if got is not None:
+            s2.append(got[0] ** 2)
+            noise.append(got[1])
+            refit.append(parameter_variance(fit, held, weights, solve))
+    if not s2:
+        return None
+    excess = float(np.mean(s2) - np.mean(noise) - np.mean(refit))
+    p = fit.model.params
+    slope = fit.values.get("u6_slope_m_per_N", p.u6_slope_m_per_N)
+    f0 = -fit.values.get("u6_offset_m", p.u6_offset_m) / slope if slope > 0 else None
+    distance = force_distance([float(rest[0]), float(rest[-1])], float(edge), f0)
+    if distance <= 0.0:
+        return None
+    return {"rel_sd": math.sqrt(max(excess, 0.0)), "distance": distance, "tests": len(s2)}
 
 
 def alternatives(selected, competitors: list, keep=()) -> list[tuple[float, object]]:
@@ -134,4 +191,4 @@ def sized(fit) -> bool:
     return True
 
 
-__all__ = ["alternatives", "model_error", "sized", "validity"]
+__all__ = ["alternatives", "edge_error", "model_error", "sized", "validity"]

@@ -151,7 +151,7 @@ def rollaway_risk(model: DrumModel, *, hand_force_N: float, grade_pct: float, di
     """
     from rollaway.hold import _effective, required_torque, tyre_adhesion_margin
     from rollaway.hold.numeric import Subset, first_slip_time
-    from rollaway.uncertainty.predictive import extrapolation, model_error_draws, model_error_sd
+    from rollaway.uncertainty.predictive import edge_sd, extrapolation, model_error_draws, model_error_sd
 
     if not (isinstance(draws, (int, np.integer)) and 1 <= draws <= 1_000_000):
         raise UserError(f"--uncertainty {draws} must be a whole number of draws from 1 to 1000000, e.g. 1000")
@@ -161,10 +161,12 @@ def rollaway_risk(model: DrumModel, *, hand_force_N: float, grade_pct: float, di
     g, sign = _effective(grade_pct, direction)
     t_req = float(required_torque(model.params, g, occupants))
     t0 = model.params.initial_drum_temp_C if initial_temp_C is None else float(initial_temp_C)
+    f0 = zero_torque_force(model)
     factor, flags = extrapolation(pred, hand_force_N=float(hand_force_N), direction=direction, initial_temp_C=t0,
-                                  duration_s=float(duration_s), zero_torque_force_N=zero_torque_force(model))
+                                  duration_s=float(duration_s), zero_torque_force_N=f0)
+    edge = edge_sd(pred, float(hand_force_N), f0)
     rng = np.random.default_rng(seed)
-    eps = model_error_draws(pred, draws, factor, rng)
+    eps = model_error_draws(pred, draws, factor, rng, edge)
     parts = [(1.0 - sum(w for w, _ in model.alternatives), model)] + list(model.alternatives)
     counts = np.floor(np.array([w for w, _ in parts]) * draws).astype(int)
     counts[0] += draws - counts.sum()
@@ -202,7 +204,7 @@ def rollaway_risk(model: DrumModel, *, hand_force_N: float, grade_pct: float, di
     shares = {"parameters": min(v_par / total, 1.0), "choice_of_effects": max(v_mix - v_par, 0.0) / total,
               "model_error": max(v_all - v_mix, 0.0) / total} if v_all > 0 else {}
     detail = {"shares": shares, "flags": flags, "extrapolation_factor": factor,
-              "model_error_rel_sd": model_error_sd(pred, factor),
+              "model_error_rel_sd": model_error_sd(pred, factor, edge),
               "models": [{"name": m.name, "weight": float(w), "draws": int(c)} for (w, m), c in zip(parts, counts)],
               "half_width": _half_width(least)}
     main = owner == 0

@@ -36,46 +36,62 @@ def _fold_solver(a: np.ndarray, jg: np.ndarray):
     return lambda x: np.linalg.lstsq(m, x, rcond=1e-8)[0]
 
 
+def _standardised(fit) -> np.ndarray:
+    d, pred = fit.data, fit.prediction
+    return np.concatenate([(pred.drum_temp_C - d.drum_temp_C) / d.temp_sigma_C,
+                           (pred.torque_Nm - d.torque_Nm) / d.torque_sigma_Nm])
+
+
+def held_out(fit, held) -> tuple[np.ndarray, np.ndarray, object]:
+    """(rows g of [temperature | torque] that belong to the tests *held*, their standardised residuals predicted
+    with all of those tests left out of the calibration, and x ↦ (JᵀJ − J_gᵀJ_g)⁺·x in the normalised
+    Jacobian's units).  Needs a Jacobian."""
+    d = fit.data
+    j = _normalised_jacobian(fit)
+    r = _standardised(fit)
+    g = np.isin(np.concatenate([d.test_index, d.test_index]), held)
+    jg, rg = j[g], r[g]
+    solve = _fold_solver(j.T @ j, jg)
+    return g, rg + jg @ solve(jg.T @ rg), solve
+
+
 def loto_residuals(fit) -> np.ndarray:
     """Standardised residuals (model − measured)/σ, [temperature | torque], of every sample as
     predicted with its own test (its fold) left out of the calibration: the linearised
     leave-one-test-out of :func:`cv_score`.  Without a Jacobian: the fit's own residuals."""
-    d = fit.data
-    pred = fit.prediction
-    r = np.concatenate([(pred.drum_temp_C - d.drum_temp_C) / d.temp_sigma_C,
-                        (pred.torque_Nm - d.torque_Nm) / d.torque_sigma_Nm])
+    out = _standardised(fit)
     if fit.jacobian is None or not fit.names:
-        return r
-    j = _normalised_jacobian(fit)
-    rows_test = np.concatenate([d.test_index, d.test_index])
-    a = j.T @ j
-    out = r.copy()
-    for held in folds(d.n_tests):
-        g = np.isin(rows_test, held)
-        jg, rg = j[g], r[g]
-        out[g] = rg + jg @ _fold_solver(a, jg)(jg.T @ rg)
+        return out
+    for held in folds(fit.data.n_tests):
+        g, loo, _ = held_out(fit, held)
+        out[g] = loo
     return out
 
 
+def parameter_variance(fit, held, weights: np.ndarray, solve=None) -> float:
+    """The variance that re-calibrating without the tests *held* adds to Σ_i w_i·r_i of their held-out standardised
+    residuals when the model is right: wᵀ·J·(JᵀJ − J_gᵀJ_g)⁺·Jᵀ·w (*weights*: one per row of [temperature | torque],
+    zero outside the rows scored; *solve*: :func:`held_out`'s, when at hand)."""
+    j = _normalised_jacobian(fit)
+    if solve is None:
+        solve = held_out(fit, held)[2]
+    v = j.T @ np.asarray(weights, float)
+    return float(v @ solve(v))
+
+
 def loto_parameter_variance(fit, weights: np.ndarray) -> np.ndarray:
-    """Per test k, the variance that re-calibrating without k's fold adds to the weighted sum
-    Σ_i w_i·r_i of k's held-out standardised residuals when the model is right: wᵀ·J_g·(JᵀJ − J_gᵀJ_g)⁺·J_gᵀ·w
-    (the held-out residual's covariance is (I − H_gg)⁻¹ = I + J_g·(JᵀJ − J_gᵀJ_g)⁻¹·J_gᵀ; the identity part
-    is the noise).  *weights*: one per row of [temperature | torque], zero outside the rows scored."""
+    """Per test k, :func:`parameter_variance` of k's fold for the weights on k's rows (the held-out residual's
+    covariance is (I − H_gg)⁻¹ = I + J_g·(JᵀJ − J_gᵀJ_g)⁻¹·J_gᵀ; the identity part is the noise)."""
     d = fit.data
     out = np.zeros(d.n_tests)
     if fit.jacobian is None or not fit.names:
         return out
-    j = _normalised_jacobian(fit)
     w = np.asarray(weights, float)
     rows_test = np.concatenate([d.test_index, d.test_index])
-    a = j.T @ j
     for held in folds(d.n_tests):
-        g = np.isin(rows_test, held)
-        solve = _fold_solver(a, j[g])
+        solve = held_out(fit, held)[2]
         for k in held:
-            v = j.T @ np.where(rows_test == k, w, 0.0)
-            out[k] = float(v @ solve(v))
+            out[k] = parameter_variance(fit, held, np.where(rows_test == k, w, 0.0), solve)
     return out
 
 
@@ -86,4 +102,5 @@ def loto_scores(fit) -> np.ndarray:
     return np.bincount(np.concatenate([d.test_index, d.test_index]), loto * loto, d.n_tests)
 
 
-__all__ = ["FOLDS", "LOO_TESTS", "folds", "loto_parameter_variance", "loto_residuals", "loto_scores"]
+__all__ = ["FOLDS", "LOO_TESTS", "folds", "held_out", "loto_parameter_variance", "loto_residuals", "loto_scores",
+           "parameter_variance"]

@@ -18,30 +18,44 @@ MAX_LEVEL_DISTANCE = 10.0    # a hand force at or below the one where the torque
 TOLERANCE = 0.02             # within 2 % of the span of a tested edge counts as tested
 
 
+def force_distance(tested_N, hand_force_N: float, zero_torque_force_N: float | None = None) -> float:
+    """How far *hand_force_N* lies outside the tested hand forces *tested_N* = [lowest, highest], relative to their
+    span (at least :data:`SPAN_FLOOR`); 0 within :data:`TOLERANCE` of the span.  Below the tested forces the torque
+    falls towards zero at *zero_torque_force_N* (eq. 24: u₆ = 0), and a relative error grows as the torque level
+    falls: there the distance is at least the torque level's ratio less one, (F_lo − F₀)/(F − F₀) − 1 (capped at
+    :data:`MAX_LEVEL_DISTANCE`)."""
+    lo, hi = tested_N
+    span = max(hi - lo, SPAN_FLOOR["hand_force_N"])
+    dist = max(lo - hand_force_N, hand_force_N - hi, 0.0)
+    if dist <= TOLERANCE * span:
+        return 0.0
+    rel = dist / span
+    if hand_force_N < lo and zero_torque_force_N is not None and lo > zero_torque_force_N:
+        level = (lo - zero_torque_force_N) / max(hand_force_N - zero_torque_force_N, 1e-9)
+        rel = max(rel, min(level - 1.0, MAX_LEVEL_DISTANCE))
+    return rel
+
+
 def extrapolation(pred: dict, *, hand_force_N: float, direction: str, initial_temp_C: float,
                   duration_s: float, zero_torque_force_N: float | None = None) -> tuple[float, list[str]]:
     """(factor ≥ 1 on the model error, flags) for a road question against the tested range.
 
-    Each distance counts relative to the tested span.  Below the tested hand forces the torque falls
-    towards zero at *zero_torque_force_N* (eq. 24: u₆ = 0), and a relative error grows as the torque level
-    falls: there the distance is at least the torque level's ratio less one, (F_lo − F₀)/(F − F₀) − 1
-    (capped at :data:`MAX_LEVEL_DISTANCE`)."""
+    Each distance counts relative to the tested span; the hand force's by :func:`force_distance`."""
     factor, flags = 1.0, []
-    for key, value, unit in (("hand_force_N", hand_force_N, "N"), ("initial_temp_C", initial_temp_C, "°C")):
-        rng = pred.get(f"tested_{key}")
-        if rng is None:
-            continue
-        lo, hi = rng
-        span = max(hi - lo, SPAN_FLOOR[key])
-        dist = max(lo - value, value - hi, 0.0)
-        if dist > TOLERANCE * span:
-            name = "hand force" if key == "hand_force_N" else "start temperature T_0"
-            flags.append(f"{name} {value:g} {unit} is outside the tested {lo:g}–{hi:g} {unit}")
-            rel = dist / span
-            if key == "hand_force_N" and value < lo and zero_torque_force_N is not None and lo > zero_torque_force_N:
-                level = (lo - zero_torque_force_N) / max(value - zero_torque_force_N, 1e-9)
-                rel = max(rel, min(level - 1.0, MAX_LEVEL_DISTANCE))
+    rng = pred.get("tested_hand_force_N")
+    if rng is not None:
+        rel = force_distance(rng, hand_force_N, zero_torque_force_N)
+        if rel > 0.0:
+            flags.append(f"hand force {hand_force_N:g} N is outside the tested {rng[0]:g}–{rng[1]:g} N")
             factor += rel
+    rng = pred.get("tested_initial_temp_C")
+    if rng is not None:
+        lo, hi = rng
+        span = max(hi - lo, SPAN_FLOOR["initial_temp_C"])
+        dist = max(lo - initial_temp_C, initial_temp_C - hi, 0.0)
+        if dist > TOLERANCE * span:
+            flags.append(f"start temperature T_0 {initial_temp_C:g} °C is outside the tested {lo:g}–{hi:g} °C")
+            factor += dist / span
     dirs = pred.get("tested_directions")
     if dirs and direction not in dirs:
         flags.append(f"facing {direction} was not tested (only {', '.join(dirs)})")
@@ -53,9 +67,24 @@ def extrapolation(pred: dict, *, hand_force_N: float, direction: str, initial_te
     return factor, flags
 
 
-def model_error_sd(pred: dict, factor: float) -> float:
+def edge_sd(pred: dict, hand_force_N: float, zero_torque_force_N: float | None = None) -> float:
+    """The relative torque error the bench itself showed when it extrapolated in hand force (the record's
+    ``model_error_edge_low``/``_high`` = [rel_sd, distance]: the edge force predicted from the others), scaled
+    linearly to the question's distance beyond that edge (:func:`force_distance`); 0 inside the tested forces."""
+    rng = pred.get("tested_hand_force_N")
+    if rng is None:
+        return 0.0
+    dist = force_distance(rng, hand_force_N, zero_torque_force_N)
+    edge = pred.get("model_error_edge_low" if hand_force_N < rng[0] else "model_error_edge_high")
+    if dist <= 0.0 or not edge or edge[1] <= 0.0:
+        return 0.0
+    return float(edge[0]) * dist / float(edge[1])
+
+
+def model_error_sd(pred: dict, factor: float, edge: float = 0.0) -> float:
     """The relative torque error's scale for a question with extrapolation *factor* (see :func:`model_error_draws`):
-    √((rel_sd·factor)² + floor_rel_sd²·(UNSEEN² + (factor − 1)²)).
+    √((rel_sd·factor)² + floor_rel_sd²·(UNSEEN² + (factor − 1)²)), and at least *edge* (:func:`edge_sd`: the
+    error the bench showed when it extrapolated in hand force, at the question's distance).
 
     The measured error (``rel_sd``) grows with the distance from the tested range.  An error the data could not
     see — below ``floor_rel_sd``, the noise's resolution of one test's held-out error — is counted too: a share
@@ -63,14 +92,15 @@ def model_error_sd(pred: dict, factor: float) -> float:
     question just outside the tested range is as good as a tested one."""
     sd = float(pred.get("model_error_rel_sd", 0.0))
     floor = float(pred.get("model_error_floor_rel_sd", 0.0))
-    return float(np.sqrt((sd * factor) ** 2 + floor ** 2 * (UNSEEN ** 2 + max(factor - 1.0, 0.0) ** 2)))
+    return max(float(np.sqrt((sd * factor) ** 2 + floor ** 2 * (UNSEEN ** 2 + max(factor - 1.0, 0.0) ** 2))),
+               float(edge))
 
 
-def model_error_draws(pred: dict, n: int, factor: float, rng: np.random.Generator) -> np.ndarray:
+def model_error_draws(pred: dict, n: int, factor: float, rng: np.random.Generator, edge: float = 0.0) -> np.ndarray:
     """n multiplicative torque errors ε (torque × (1 + ε)), Student-t with the record's dof, of scale
-    :func:`model_error_sd` (widened beyond the tested range by *factor*).  The floor's share (:data:`UNSEEN`) was
-    measured with this Student-t: a Gaussian floor left 1-min bands at 135 N below 0.85."""
-    sd = model_error_sd(pred, factor)
+    :func:`model_error_sd` (widened beyond the tested range by *factor*, at least *edge*).  The floor's share
+    (:data:`UNSEEN`) was measured with this Student-t: a Gaussian floor left 1-min bands at 135 N below 0.85."""
+    sd = model_error_sd(pred, factor, edge)
     if sd <= 0.0:
         return np.zeros(n)
     dof = max(int(pred.get("model_error_dof", 1)), 1)
@@ -78,4 +108,5 @@ def model_error_draws(pred: dict, n: int, factor: float, rng: np.random.Generato
     return np.clip(eps, -0.9, 9.0)       # a torque never changes sign through its model error
 
 
-__all__ = ["extrapolation", "model_error_draws", "model_error_sd", "record", "validate"]
+__all__ = ["edge_sd", "extrapolation", "force_distance", "model_error_draws", "model_error_sd", "record",
+           "validate"]
