@@ -31,6 +31,7 @@ from rollaway.identify.fitting import single_blas_thread
 from rollaway.identify.intervals import covariance_variances, ess_inflation, mixture_variances, restate
 from rollaway.bench.measurements import Measurements
 from rollaway.bench.noise import Noise, noise_estimate, sample_sigma
+from rollaway.identify.detection import detection_limits, limits_words
 from rollaway.identify.diagnose_words import describe_residual, no_candidate_words, noise_words, structure_words
 from rollaway.identify.selection import (BIC_THRESHOLD, Candidate, cv_score, eliminate, exchange, folds, forward_step,
                                          has_per_test, own_evidence, per_test_signature, structure, weighted_chi2)
@@ -192,6 +193,9 @@ def diagnose(data: Measurements, params=None, effects=None, *, noise_torque_Nm: 
     weak = weak_alternatives(params, base, first_cands, validity(full), nq.sigma) if not chosen and not remaining else []
     indist = [" + ".join(a["effects"]) for a in rivalry + weak]
     ev += alternative_words(verdict, rivalry + weak)
+    limits = detection_limits(data, base) if verdict == "none" else []
+    if limits:
+        ev.append(limits_words(limits))
     misfit = ("unexplained" if remaining and not any(e["form"] == "partial" for e in selected) else
               "partial" if remaining or any(e["form"] != "exact" for e in selected) else False)
     pool = [base] + [c.fit for c in first_cands]
@@ -211,7 +215,8 @@ def diagnose(data: Measurements, params=None, effects=None, *, noise_torque_Nm: 
     refined.fit_info["calibration"] = drum.record()
     ev.append(_interval_words(refined, drum, alts))
     return Diagnosis(data, paper, base, nq, nt, first_cands, verdict, indist, refined,
-                     remaining, struct, base_cv, ev, selected, steps, shape, drum, rivalry + weak, diagnose)
+                     remaining, struct, base_cv, ev, selected, steps, shape, drum, rivalry + weak, diagnose,
+                     detection=limits)
 
 
 def _interval_words(fit: FitResult, drum: DrumCalibration, alts) -> str:
