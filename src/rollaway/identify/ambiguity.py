@@ -93,20 +93,25 @@ def rivals(best, candidates: list, threshold: float, inflation: float = 1.0) -> 
 def closest(base, candidates: list, base_cv, threshold: float, validity: dict, noise_torque_Nm: float) -> list[dict]:
     """Where structure remains that no catalogue form clears: the candidates of the first step that point at
     the physics — ΔBIC below *threshold* against the calibrated drum *base* and better held-out prediction
-    (*base_cv*) — the best :data:`MAX_RIVALS` by BIC (two forms that both leave structure are not ranked by
+    (*base_cv*); when none predicts better (with few tests each one left out is an extrapolation), those with
+    the ΔBIC alone, saying so — the best :data:`MAX_RIVALS` by BIC (two forms that both leave structure are not ranked by
     the evidence between them); each ``{"kind": "closest", "effects", "delta_bic" (against the drum alone),
     "heldout_elpd", "heldout_se" (against the drum alone), "why", "tell_apart", "fit"}``.  With two, the test
     that would tell them apart; with one, where it departs most from the drum alone."""
-    ok = [c for c in candidates if c.cv_score is not None and base_cv is not None and c.cv_score < base_cv
-          and c.delta_bic < threshold and c.fit.jacobian is not None]
-    if not ok or base.jacobian is None:
+    strong = [c for c in candidates if c.delta_bic < threshold and c.fit.jacobian is not None]
+    ok = [c for c in strong if c.cv_score is not None and base_cv is not None and c.cv_score < base_cv]
+    if base.jacobian is None:
         return []
+    held_out_against = not ok          # none predicts held-out tests better (few tests: each left out is extrapolated)
     out = []
-    for c in sorted(ok, key=lambda c: c.delta_bic)[:MAX_RIVALS]:
+    for c in sorted(ok or strong, key=lambda c: c.delta_bic)[:MAX_RIVALS]:
         elpd, se = heldout_difference(base, c.fit)
         out.append({"kind": "closest", "effects": [c.effect], "delta_bic": float(c.delta_bic), "heldout_elpd": elpd,
                     "heldout_se": se, "fit": c.fit,
-                    "why": f"ΔBIC {c.delta_bic:.1f} and held-out log score {elpd:+.1f} ± {se:.1f} against the drum alone"})
+                    "why": f"ΔBIC {c.delta_bic:.1f} and held-out log score {elpd:+.1f} ± {se:.1f} against the drum alone"
+                           + (" (the held-out prediction does not support it)" if held_out_against else "")})
+    if not out:
+        return []
     other = out[1]["fit"] if len(out) > 1 else base
     words = tell_apart(out[0]["fit"], other, validity, noise_torque_Nm)
     for a in out:

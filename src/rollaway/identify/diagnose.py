@@ -193,7 +193,7 @@ def diagnose(data: Measurements, params=None, effects=None, *, noise_torque_Nm: 
     weak = weak_alternatives(params, base, first_cands, validity(full), nq.sigma) if not chosen and not remaining else []
     indist = [" + ".join(a["effects"]) for a in rivalry + weak]
     ev += alternative_words(verdict, rivalry + weak)
-    limits = detection_limits(data, base) if verdict == "none" else []
+    limits = detection_limits(data, base) if verdict == "none" and not remaining else []
     if limits:
         ev.append(limits_words(limits))
     misfit = ("unexplained" if remaining and not any(e["form"] == "partial" for e in selected) else
