@@ -71,3 +71,10 @@ def test_limits_are_positive_sizes_and_ratios_to_the_typical_size():
     assert all(r["least_size"] > 0 for r in rows.values())
     assert all(math.isinf(r["ratio"]) or r["ratio"] == pytest.approx(r["least_size"] / abs(r["typical"]))
                for r in rows.values())
+
+
+def test_the_report_lists_the_limits(tmp_path):
+    d = diagnose(generate([], seed=64, sampling="5min"))
+    d.report(tmp_path / "d.html")
+    page = (tmp_path / "d.html").read_text()
+    assert "What this campaign could have missed" in page and d.detection[0]["effect"] in page

@@ -297,6 +297,13 @@ def diagnosis_report(diag, path) -> None:
             "<h2>Evidence</h2>" + ul(getattr(diag, "evidence", [])))
     if design_tab:
         body += "<h2>Design case</h2>" + design_tab
+    if getattr(diag, "detection", None):
+        body += ("<h2>What this campaign could have missed</h2>"
+                 + table(["effect", "size parameter", "least size found 4 times in 5", "typical size", "ratio"],
+                         [[r["effect"], r["parameter"], f"{r['least_size']:.3g} {r['unit']}",
+                           f"{r['typical']:.3g} {r['unit']}", f"{r['ratio']:.2g}"] for r in diag.detection])
+                 + "<p class='note'>A ratio above 1: an effect of the size real drums show could hide in these data "
+                   "(rollaway.identify.detection).</p>")
     drum = getattr(diag, "drum", None)
     if drum is not None:
         body += (f"<h2>Your drum: what these data identify</h2><p class='sub'>{esc(drum.selection)}; singular values "
