@@ -53,7 +53,10 @@ def test_a_denser_design_sees_smaller_effects_and_none_reports_them():
         assert lim["dense"][effect] < 0.5 * lim["sparse"][effect], effect
     assert sparse.as_dict()["detection_limits"][0]["ratio"] <= sparse.detection[-1]["ratio"]
     assert any("would have found 4 times in 5" in e for e in sparse.evidence)
-    assert "could miss" in limits_words(sparse.detection) or all(r["ratio"] <= 1 for r in sparse.detection)
+    missed = [r["effect"] for r in sparse.detection if r["ratio"] > 1]
+    assert missed and "could miss" in limits_words(sparse.detection)
+    assert sparse.as_dict()["verdict_line"].startswith(f"none (not found; these data could miss {len(missed)} of")
+    assert dense.as_dict()["verdict_line"] == "none"          # sees every effect below its typical size
 
 
 def test_only_a_none_gets_limits_and_the_size_parameter_is_the_amplitude():

@@ -245,11 +245,16 @@ def alternative_words(verdict: str, alternatives: list[dict]) -> list[str]:
                  f"{a['tell_apart']['words']}." for a in alternatives]
 
 
-def verdict_line(verdict: str, alternatives: list[dict]) -> str:
+def verdict_line(verdict: str, alternatives: list[dict], detection=()) -> str:
     """"A or B: these data cannot tell them apart; a test at … would" (or the verdict alone); for a verdict
-    ``none`` with the closest catalogue effects (:func:`closest`): "none explains …; closest: A or B"."""
+    ``none`` with the closest catalogue effects (:func:`closest`): "none explains …; closest: A or B"; for a bare
+    ``none`` whose *detection* limits (:mod:`rollaway.identify.detection`) exceed typical sizes: what could hide."""
     if not alternatives:
-        return verdict
+        from rollaway.identify.detection import blind
+        missed = blind(detection) if verdict == "none" else []
+        return verdict + (f" (not found; these data could miss {len(missed)} of {len(detection)} effects at the "
+                          f"size real drums show: {', '.join(missed[:3])}{', …' if len(missed) > 3 else ''}; "
+                          f"see the detection limits)" if missed else "")
     if alternatives[0].get("kind") == "weak":
         names = " or ".join(a["effects"][0] for a in alternatives)
         return (f"none (suggested, not established: {names}); {alternatives[0]['tell_apart']['words']}")

@@ -89,17 +89,22 @@ def detection_limits(data, base, threshold: float = 10.0, effects=None) -> list[
     return sorted(out, key=lambda r: r["ratio"])
 
 
+def blind(limits: list[dict]) -> list[str]:
+    """The effects these data could miss at the size real drums show (limit above the typical size)."""
+    return [r["effect"] for r in limits if r["ratio"] > 1.0]
+
+
 def limits_words(limits: list[dict], top: int = 4) -> str:
     """One line: the least sizes these data find, most sensitive first, and those they would miss at typical size."""
     if not limits:
         return ""
     seen = [f"{r['effect']} {r['parameter']} ≥ {r['least_size']:.2g}{'' if r['unit'] in ('–', '') else ' ' + r['unit']}"
             f" (typical {r['typical']:.2g}, ×{r['ratio']:.2g})" for r in limits[:top] if math.isfinite(r["least_size"])]
-    blind = [r["effect"] for r in limits if r["ratio"] > 1.0]
+    missed = blind(limits)
     return ("What these data would have found 4 times in 5 (rollaway.identify.detection): "
             + "; ".join(seen) + "."
-            + (f"  At the size real drums show, they could miss {', '.join(blind)}: test where they differ "
-               f"(more forces, both directions, hotter starts, longer holds or denser samples)." if blind else ""))
+            + (f"  At the size real drums show, they could miss {', '.join(missed)}: test where they differ "
+               f"(more forces, both directions, hotter starts, longer holds or denser samples)." if missed else ""))
 
 
-__all__ = ["POWER_Z", "SELECTION_FACTOR", "detection_limits", "limits_words", "size_parameter"]
+__all__ = ["POWER_Z", "SELECTION_FACTOR", "blind", "detection_limits", "limits_words", "size_parameter"]

@@ -287,6 +287,10 @@ def diagnosis_report(diag, path) -> None:
                 "An effect outside the catalogue (or several together) is missing.")
     else:
         head = "No missing effect detected: the paper model, calibrated, explains the data down to the noise."
+        from rollaway.identify.detection import blind
+        missed = blind(getattr(diag, "detection", []) or [])
+        if missed:
+            head += f" These data could miss effects of the size real drums show: {', '.join(missed)}."
     good = verdict != "none" or not getattr(diag, "remaining_structure", False)
     fits = [("paper model", diag.paper), ("calibrated paper model", diag.baseline)]
     if diag.refined is not diag.baseline:
