@@ -171,3 +171,34 @@ def test_structure_with_no_candidate_predicting_better_still_names_the_closest_a
         d = diagnose(generate([], sampling="1min", seed=9172 + seed, drum=OTHER_DRUMS["eq24_own"],
                               forces=np.linspace(170.0, 330.0, 3), directions=("downhill",)))
         assert d.verdict == "none" and not d.alternatives and not d.remaining_structure
+
+
+def test_the_bar_for_a_heldout_preference_grows_as_tests_get_few():
+    """Two standard errors of a paired difference over n tests stand for a normal tail; with few tests the standard
+    error is itself uncertain (Student's t, n − 1 dof)."""
+    from rollaway.identify.ambiguity import SMALL_ELPD, preference_margin
+    fit = lambda n: SimpleNamespace(data=SimpleNamespace(n_tests=n))     # noqa: E731
+    assert preference_margin(fit(2), 10.0) == pytest.approx(139.0, rel=0.01)
+    assert preference_margin(fit(4), 10.0) == pytest.approx(33.1, rel=0.01)
+    assert 20.0 < preference_margin(fit(40), 10.0) < 21.0
+    assert preference_margin(fit(8), 0.1) == SMALL_ELPD and preference_margin(fit(1), 1.0) == float("inf")
+
+
+def test_two_tests_facing_one_way_name_the_temperature_laws_they_cannot_separate():
+    """A linear modulus drop on a drum with its own eq. (24) law, two hand forces facing uphill at 5-min: leaving one
+    of two tests out is an extrapolation, so held-out scores cannot rule a temperature law out; the truth must be the
+    verdict or a flagged alternative in at least 7 of 8 seeds."""
+    from rollaway.identify.diagnose import diagnose
+    from tests.identify.bench_generator import OTHER_DRUMS, generate
+    hits = 0
+    for seed in range(8):
+        d = diagnose(generate(["modulus_linear"], sampling="5min", seed=8100 + seed, forces=[200.0, 330.0],
+                              directions=("uphill",), drum=OTHER_DRUMS["eq24_own"]))
+        hits += d.verdict == "modulus_temperature" or any("modulus_temperature" in a["effects"] for a in d.alternatives)
+        assert len(d.effects) <= 1 and len(d.alternatives) <= 2
+    assert hits >= 7, hits
+    from tests.identify.heldout_names import campaign        # held-out campaign 101: both laws predicted the other
+    hidden, data = campaign(101)                             # test worse than the drum alone, and were not named
+    d = diagnose(data)
+    assert hidden == "modulus_linear" and d.data.n_tests == 2
+    assert "modulus_temperature" in [d.verdict] + [e for a in d.alternatives for e in a["effects"]]

@@ -1,7 +1,8 @@
 """Effect sets the bench data cannot tell apart, and the test that would.
 
-:func:`rivals` reads the first selection step: a candidate that also passed (ΔBIC below the
-threshold, better held-out prediction than the drum alone) is *not ruled out* by the data when
+:func:`rivals` reads the first selection step: a candidate with ΔBIC below the threshold (its held-out
+prediction is judged against the selected effect's, not against the drum alone: with few tests each one left
+out is an extrapolation, and all of them may predict worse than the drum) is *not ruled out* by the data when
 
 * its BIC is within :data:`INDISTINGUISHABLE_BIC` of the selected effect's and the held-out
   prediction does not prefer the selected one (:func:`heldout_difference`), or
@@ -12,8 +13,9 @@ The held-out comparison is the paired difference of the per-test leave-one-test-
 (Gaussian log score, :func:`rollaway.uncertainty.heldout.loto_scores`) with its standard error
 √(n·var(d)) over the n tests (Vehtari, Gelman & Gabry 2017, "Practical Bayesian model evaluation
 using leave-one-out cross-validation and WAIC", Stat. Comput. 27, §5.2 "standard error of the
-difference"); "prefers" means a difference beyond :data:`HELDOUT_SE` standard errors and beyond
-:data:`SMALL_ELPD` (with a handful of tests a consistent small difference has a tiny standard error).
+difference"); "prefers" means a difference beyond :data:`HELDOUT_SE` standard errors (as a Student-t tail with
+tests − 1 dof: :func:`preference_margin`) and beyond :data:`SMALL_ELPD` (with a handful of tests a consistent small
+difference has a tiny standard error).
 
 :func:`tell_apart` says what test would separate two fitted models: both calibrated drum models
 predict the torque over a grid of road/bench conditions — both directions, hand forces 25 % beyond
@@ -55,11 +57,22 @@ def heldout_difference(a, b) -> tuple[float, float]:
     return float(d.sum()), se
 
 
+def preference_margin(fit, se: float) -> float:
+    """How far a held-out difference must go before it "prefers" (:data:`HELDOUT_SE` standard errors, the normal
+    tail it stands for taken from Student's t with tests − 1 dof: a standard error from n paired per-test
+    differences is itself uncertain — with 2 tests the 2σ bar is 13.9σ, with 4 it is 3.9σ, with 8 2.5σ), and at
+    least :data:`SMALL_ELPD`."""
+    from scipy.stats import norm, t
+    n = int(getattr(fit.data, "n_tests", 0))
+    k = max(HELDOUT_SE, float(t.ppf(norm.cdf(HELDOUT_SE), n - 1))) if n > 1 else math.inf
+    return max(k * se, SMALL_ELPD)
+
+
 def not_ruled_out(a, b) -> bool:
-    """True when the held-out prediction does not prefer fit *a* over fit *b* beyond :data:`HELDOUT_SE`
-    standard errors and :data:`SMALL_ELPD` (:func:`heldout_difference`)."""
+    """True when the held-out prediction does not prefer fit *a* over fit *b* beyond :func:`preference_margin`
+    (:func:`heldout_difference`)."""
     elpd, se = heldout_difference(a, b)
-    return elpd > -max(HELDOUT_SE * se, SMALL_ELPD)
+    return elpd > -preference_margin(a, se)
 
 
 def rivals(best, candidates: list, threshold: float, inflation: float = 1.0) -> list[dict]:
@@ -76,7 +89,7 @@ def rivals(best, candidates: list, threshold: float, inflation: float = 1.0) -> 
             continue
         dbic = (c.delta_bic - best.delta_bic) / max(inflation, 1.0)
         elpd, se = heldout_difference(best.fit, c.fit)
-        if dbic < INDISTINGUISHABLE_BIC and elpd > -max(HELDOUT_SE * se, SMALL_ELPD):
+        if dbic < INDISTINGUISHABLE_BIC and elpd > -preference_margin(best.fit, se):
             why = (f"BIC within {INDISTINGUISHABLE_BIC:g} ({dbic:+.1f}) and the held-out prediction does not prefer "
                    f"either (Δ log score {elpd:+.1f} ± {se:.1f})")
         elif elpd > 0:
@@ -268,4 +281,4 @@ def verdict_line(verdict: str, alternatives: list[dict], detection=()) -> str:
 
 
 __all__ = ["HELDOUT_SE", "INDISTINGUISHABLE_BIC", "SMALL_ELPD", "MAX_RIVALS", "WEAK_BIC", "alternative_words", "closest",
-           "heldout_difference", "not_ruled_out", "rivals", "tell_apart", "verdict_line", "weak_alternatives"]
+           "heldout_difference", "not_ruled_out", "preference_margin", "rivals", "tell_apart", "verdict_line", "weak_alternatives"]

@@ -237,7 +237,7 @@ def _rivals(selected: list[dict], first: list[Candidate], base_cv, tested: dict,
     best = next((c for c in first if c.effect == selected[0]["effect"]), None)
     if best is None:
         return []
-    out = rivals(best, [c for c in first if c.cv_score is not None and c.cv_score < base_cv], BIC_THRESHOLD,
+    out = rivals(best, [c for c in first if c.cv_score is not None], BIC_THRESHOLD,
                  max(ess_inflation(best.fit).values()))
     for a in out:
         a["tell_apart"] = tell_apart(best.fit, a["fit"], tested, nq.sigma)
