@@ -202,3 +202,21 @@ def test_two_tests_facing_one_way_name_the_temperature_laws_they_cannot_separate
     d = diagnose(data)
     assert hidden == "modulus_linear" and d.data.n_tests == 2
     assert "modulus_temperature" in [d.verdict] + [e for a in d.alternatives for e in a["effects"]]
+
+
+def test_a_two_effect_verdict_names_the_set_with_the_temperature_law_it_cannot_tell_apart():
+    """A cable relaxation with a linear modulus drop at 1-min (12 designs of the two-effect suite): friction and
+    modulus falling with temperature trade places beside the cable; the true set must be the verdict or a flagged
+    alternative (each a two-effect set, the verdict line naming both sets) in at least 11 of 12."""
+    from rollaway.identify.diagnose import diagnose
+    from tests.identify.bench_generator import generate
+    from tests.identify.validate_diagnose import kwargs_for
+    truth, hits = {"cable_relaxation", "modulus_temperature"}, 0
+    for i in range(12):
+        d = diagnose(generate(("cable_exponential", "modulus_linear"), sampling="1min", seed=2000 + i, **kwargs_for(i)))
+        got = {e["effect"] for e in d.effects}
+        hits += got == truth or any(set(a["effects"]) == truth for a in d.alternatives)
+        if len(got) == 2 and d.alternatives:
+            assert all(len(a["effects"]) == 2 and a["kind"] == "rival" for a in d.alternatives)
+            assert d.as_dict()["verdict_line"].startswith(" + ".join(e["effect"] for e in d.effects) + " or ")
+    assert hits >= 11, hits

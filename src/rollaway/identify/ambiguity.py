@@ -103,6 +103,44 @@ def rivals(best, candidates: list, threshold: float, inflation: float = 1.0) -> 
     return out[:MAX_RIVALS]
 
 
+def set_rivals(data, plan, names: list[str], chosen: list[str], current, inflation: float = 1.0) -> list[dict]:
+    """A verdict of several effects *chosen* (fit *current*): the sets with one of them exchanged for another
+    catalogue effect that the data do not rule out — BIC within :data:`INDISTINGUISHABLE_BIC` (divided by the
+    residual variance *inflation*, as :func:`rivals`) and a held-out prediction that does not prefer *current*
+    beyond :func:`preference_margin`.  Screened with a few iterations from *current*'s values (with the brake
+    parameters held at them, another law cannot be compared: μ_d and the eq. (24) law were fitted to the first), then
+    refitted.  At most :data:`MAX_RIVALS`, best first, each as :func:`rivals` gives them plus
+    ``"verdict_effects"`` (*chosen*)."""
+    from rollaway.identify.calibrate import calibrate
+    from rollaway.identify.selection import SCREEN_ITERATIONS, has_per_test
+    if current.jacobian is None:
+        return []
+    k = max(inflation, 1.0)
+    trials = []
+    for i in range(len(chosen)):
+        for new in names:
+            if new in chosen or has_per_test(new):
+                continue
+            trial = chosen[:i] + [new] + chosen[i + 1:]
+            fit = calibrate(data, trial, plan, start=current.values, statistics=False, max_iterations=SCREEN_ITERATIONS)
+            if (fit.bic - current.bic) / k < INDISTINGUISHABLE_BIC + 4.0:    # a loose screen
+                trials.append(trial)
+    out = []
+    for trial in trials:
+        fit = calibrate(data, trial, plan, start=current.values)
+        dbic = (fit.bic - current.bic) / k
+        if fit.jacobian is None or dbic >= INDISTINGUISHABLE_BIC:
+            continue
+        elpd, se = heldout_difference(current, fit)
+        if elpd <= -preference_margin(current, se):
+            continue
+        out.append({"kind": "rival", "effects": list(trial), "delta_bic": float(dbic), "heldout_elpd": elpd,
+                    "heldout_se": se, "fit": fit, "verdict_effects": list(chosen),
+                    "why": f"BIC within {INDISTINGUISHABLE_BIC:g} ({dbic:+.1f}) and the held-out prediction does not "
+                           f"prefer either (Δ log score {elpd:+.1f} ± {se:.1f})"})
+    return sorted(out, key=lambda a: a["delta_bic"])[:MAX_RIVALS]
+
+
 def closest(base, candidates: list, base_cv, threshold: float, validity: dict, noise_torque_Nm: float) -> list[dict]:
     """Where structure remains that no catalogue form clears: the candidates of the first step that point at
     the physics — ΔBIC below *threshold* against the calibrated drum *base* and better held-out prediction
@@ -254,8 +292,8 @@ def alternative_words(verdict: str, alternatives: list[dict]) -> list[str]:
                 + (f"; these data cannot tell them apart — {alternatives[0]['tell_apart']['words']}."
                    if len(alternatives) > 1 else ".")]
     return [f"{a['effects'][0]} is not ruled out: {a['why']}; {a['tell_apart']['words']}." if a.get("kind") == "weak"
-            else f"{verdict} or {' + '.join(a['effects'])}: these data cannot tell them apart — {a['why']}; "
-                 f"{a['tell_apart']['words']}." for a in alternatives]
+            else f"{' + '.join(a.get('verdict_effects') or [verdict])} or {' + '.join(a['effects'])}: these data "
+                 f"cannot tell them apart — {a['why']}; {a['tell_apart']['words']}." for a in alternatives]
 
 
 def verdict_line(verdict: str, alternatives: list[dict], detection=()) -> str:
@@ -276,9 +314,10 @@ def verdict_line(verdict: str, alternatives: list[dict], detection=()) -> str:
         return (f"none: structure remains that no catalogue effect explains; closest: {names} (each leaves "
                 f"structure)" + (f"; these data cannot tell them apart; {alternatives[0]['tell_apart']['words']}"
                                  if len(alternatives) > 1 else ""))
-    names = " or ".join([verdict] + [" + ".join(a["effects"]) for a in alternatives])
+    names = " or ".join([" + ".join(alternatives[0].get("verdict_effects") or [verdict])]
+                        + [" + ".join(a["effects"]) for a in alternatives])
     return f"{names}: these data cannot tell them apart; {alternatives[0]['tell_apart']['words']}"
 
 
 __all__ = ["HELDOUT_SE", "INDISTINGUISHABLE_BIC", "SMALL_ELPD", "MAX_RIVALS", "WEAK_BIC", "alternative_words", "closest",
-           "heldout_difference", "not_ruled_out", "preference_margin", "rivals", "tell_apart", "verdict_line", "weak_alternatives"]
+           "heldout_difference", "not_ruled_out", "preference_margin", "rivals", "set_rivals", "tell_apart", "verdict_line", "weak_alternatives"]

@@ -22,7 +22,8 @@ from __future__ import annotations
 import numpy as np
 
 from rollaway.effects import available_effects, get_effect
-from rollaway.identify.ambiguity import alternative_words, closest, rivals, tell_apart, weak_alternatives
+from rollaway.identify.ambiguity import (alternative_words, closest, rivals, set_rivals, tell_apart,
+                                        weak_alternatives)
 from rollaway.identify.calibrate import FitResult, calibrate, evaluate
 from rollaway.identify.coarse import MAX_WINDOW_S, coarsen
 from rollaway.identify.drum import DrumCalibration, calibrate_drum, free_needed, predictive_covariance, recheck
@@ -188,6 +189,11 @@ def diagnose(data: Measurements, params=None, effects=None, *, noise_torque_Nm: 
                          if dropped else ""))
     refined = recheck(drum, data, refined, [e["effect"] for e in selected]) if selected else refined
     rivalry = _rivals(selected, first_cands, base_cv, validity(full), nq)
+    if len(selected) >= 2 and not remaining:
+        rivalry = set_rivals(data, params, names, [e["effect"] for e in selected], refined,
+                             max(ess_inflation(refined).values()))
+        for a in rivalry:
+            a["tell_apart"] = tell_apart(refined, a["fit"], validity(full), nq.sigma)
     if verdict == "none" and remaining and not rivalry:
         rivalry = closest(base, first_cands, base_cv, BIC_THRESHOLD, validity(full), nq.sigma)
     weak = weak_alternatives(params, base, first_cands, validity(full), nq.sigma) if not chosen and not remaining else []
