@@ -103,26 +103,27 @@ def rivals(best, candidates: list, threshold: float, inflation: float = 1.0) -> 
     return out[:MAX_RIVALS]
 
 
-def set_rivals(data, plan, names: list[str], chosen: list[str], current, inflation: float = 1.0) -> list[dict]:
+def set_rivals(data, plan, names: list[str], chosen: list[str], current, inflation: float = 1.0,
+               screen_iterations: int = 6) -> list[dict]:
     """A verdict of several effects *chosen* (fit *current*): the sets with one of them exchanged for another
     catalogue effect that the data do not rule out — BIC within :data:`INDISTINGUISHABLE_BIC` (divided by the
     residual variance *inflation*, as :func:`rivals`) and a held-out prediction that does not prefer *current*
-    beyond :func:`preference_margin`.  Screened with a few iterations from *current*'s values (with the brake
+    beyond :func:`preference_margin`.  Screened with *screen_iterations* iterations from *current*'s values (with the brake
     parameters held at them, another law cannot be compared: μ_d and the eq. (24) law were fitted to the first), then
     refitted.  At most :data:`MAX_RIVALS`, best first, each as :func:`rivals` gives them plus
     ``"verdict_effects"`` (*chosen*)."""
+    from rollaway.effects import get_effect
     from rollaway.identify.calibrate import calibrate
-    from rollaway.identify.selection import SCREEN_ITERATIONS, has_per_test
     if current.jacobian is None:
         return []
     k = max(inflation, 1.0)
     trials = []
     for i in range(len(chosen)):
         for new in names:
-            if new in chosen or has_per_test(new):
+            if new in chosen or get_effect(new).per_test_parameters():
                 continue
             trial = chosen[:i] + [new] + chosen[i + 1:]
-            fit = calibrate(data, trial, plan, start=current.values, statistics=False, max_iterations=SCREEN_ITERATIONS)
+            fit = calibrate(data, trial, plan, start=current.values, statistics=False, max_iterations=screen_iterations)
             if (fit.bic - current.bic) / k < INDISTINGUISHABLE_BIC + 4.0:    # a loose screen
                 trials.append(trial)
     out = []
@@ -319,5 +320,6 @@ def verdict_line(verdict: str, alternatives: list[dict], detection=()) -> str:
     return f"{names}: these data cannot tell them apart; {alternatives[0]['tell_apart']['words']}"
 
 
-__all__ = ["HELDOUT_SE", "INDISTINGUISHABLE_BIC", "SMALL_ELPD", "MAX_RIVALS", "WEAK_BIC", "alternative_words", "closest",
-           "heldout_difference", "not_ruled_out", "preference_margin", "rivals", "set_rivals", "tell_apart", "verdict_line", "weak_alternatives"]
+__all__ = ["HELDOUT_SE", "INDISTINGUISHABLE_BIC", "SMALL_ELPD", "MAX_RIVALS", "WEAK_BIC", "alternative_words",
+           "closest", "heldout_difference", "not_ruled_out", "preference_margin", "rivals", "set_rivals", "tell_apart",
+           "verdict_line", "weak_alternatives"]

@@ -34,8 +34,9 @@ from rollaway.bench.measurements import Measurements
 from rollaway.bench.noise import Noise, noise_estimate, sample_sigma
 from rollaway.identify.detection import detection_limits, limits_words
 from rollaway.identify.diagnose_words import describe_residual, no_candidate_words, noise_words, structure_words
-from rollaway.identify.selection import (BIC_THRESHOLD, Candidate, cv_score, eliminate, exchange, folds, forward_step,
-                                         has_per_test, own_evidence, per_test_signature, structure, weighted_chi2)
+from rollaway.identify.selection import (BIC_THRESHOLD, SCREEN_ITERATIONS, Candidate, cv_score, eliminate, exchange,
+                                         folds, forward_step, has_per_test, own_evidence, per_test_signature,
+                                         structure, weighted_chi2)
 from rollaway.uncertainty.bands import validity
 
 MAX_EFFECTS = 2              # forward selection stops after this many effects (a third rarely survives CV)
@@ -191,7 +192,7 @@ def diagnose(data: Measurements, params=None, effects=None, *, noise_torque_Nm: 
     rivalry = _rivals(selected, first_cands, base_cv, validity(full), nq)
     if len(selected) >= 2 and not remaining:
         rivalry = set_rivals(data, params, names, [e["effect"] for e in selected], refined,
-                             max(ess_inflation(refined).values()))
+                             max(ess_inflation(refined).values()), SCREEN_ITERATIONS)
         for a in rivalry:
             a["tell_apart"] = tell_apart(refined, a["fit"], validity(full), nq.sigma)
     if verdict == "none" and remaining and not rivalry:
