@@ -116,6 +116,11 @@ def diagnose(data: Measurements, params=None, effects=None, *, noise_torque_Nm: 
                   f"{cur_cv:.1f} → {best.cv_score:.1f} (better in {best.cv_better_tests} of {data.n_tests} tests).  "
                   f"Expected signature: {get_effect(best.effect).signature}.")
         current = best.fit
+        refit = free_needed(drum, data, chosen, current)     # the bare drum held them under a model without
+        if refit is not None:                                # this effect: its misfit may have hidden their need
+            params, current, struct = drum.plan, refit, structure(refit, nq, nt)
+            ev.append(f"With {' + '.join(chosen)} in the model the drum needs "
+                      f"{', '.join(n for n in drum.free if n not in base.model.free)} fitted (BIC lower): freed.")
         fits.append(current)      # a clean residual does not stop the search: a second effect the calibrated
                                   # drum partly absorbed must still pass ΔBIC < −10 and the held-out test
     if len(chosen) >= 2:
@@ -133,10 +138,14 @@ def diagnose(data: Measurements, params=None, effects=None, *, noise_torque_Nm: 
         chosen, current, struct, fits = own_evidence(data, params, chosen, current, struct, fits, nq, nt, steps, ev,
                                                      drum.held())
         partner = pair[1] if len(chosen) == 1 and pair_clean else None
-        refit = free_needed(drum, data, chosen, current) if partner else None
-        if refit is not None:                     # the partner stood in for a brake parameter the drum held
-            params, current, struct, fits = drum.plan, refit, structure(refit, nq, nt), [refit]
-            ev.append(f"With {chosen[0]} in the model the drum needs "
+    if partner or (len(chosen) >= 2 and struct["structured"]):
+        # a partner that cleared the residual, or structure left by two effects each with evidence of its own, may
+        # stand in for a brake parameter the bare drum held as not needed: free those the model with them needs
+        refit = free_needed(drum, data, chosen, current)
+        if refit is not None:
+            params, current, struct = drum.plan, refit, structure(refit, nq, nt)
+            fits = [None] * (len(chosen) - 1) + [refit]
+            ev.append(f"With {' + '.join(chosen)} in the model the drum needs "
                       f"{', '.join(n for n in drum.free if n not in base.model.free)} fitted (BIC lower): freed.")
     refined = current
     selected = [{"effect": e, "form": "exact"} for e in chosen]
