@@ -198,7 +198,7 @@ def diagnose(data: Measurements, params=None, effects=None, *, noise_torque_Nm: 
                       + (f"  {', '.join(dropped)} only absorbed part of this form mismatch and is not kept."
                          if dropped else ""))
     refined = recheck(drum, data, refined, [e["effect"] for e in selected]) if selected else refined
-    rivalry = _rivals(selected, first_cands, base_cv, validity(full), nq)
+    rivalry = _rivals(selected, _same_drum(data, params, base, first_cands), base_cv, validity(full), nq)
     if len(selected) >= 2 and not remaining:
         rivalry = set_rivals(data, params, names, [e["effect"] for e in selected], refined,
                              max(ess_inflation(refined).values()), SCREEN_ITERATIONS)
@@ -257,6 +257,22 @@ def _rivals(selected: list[dict], first: list[Candidate], base_cv, tested: dict,
                  max(ess_inflation(best.fit).values()))
     for a in out:
         a["tell_apart"] = tell_apart(best.fit, a["fit"], tested, nq.sigma)
+    return out
+
+
+def _same_drum(data, params, base: FitResult, first: list[Candidate]) -> list[Candidate]:
+    """The step-1 candidates that passed the held-out test, refitted with the brake parameters *params* frees
+    when a later step freed more than the bare drum (*base*) did: a verdict and its rivals compared with one drum."""
+    if tuple(params.free) == tuple(base.model.free):
+        return first
+    out = []
+    for c in first:
+        if c.cv_score is None:
+            continue
+        fit = calibrate(data, [c.effect], params, start=c.fit.values)
+        if fit.jacobian is not None:
+            out.append(Candidate(c.effect, fit, fit.bic - base.bic, fit.aic - base.aic, c.cv_score,
+                                 c.cv_better_tests, c.step))
     return out
 
 

@@ -325,7 +325,17 @@ def own_evidence(data, params, chosen, current, struct, fits, nq, nt, steps, ev,
     """Keep the second of two selected effects only if it predicts held-out tests better than the first
     re-formed, with the brake parameters *refree* (held as not needed by the bare drum) freed in both
     (:func:`beyond_reform`); else drop it and keep the first alone.  Logs to *steps*, explains in *ev*;
-    returns (chosen, current fit, its structure, fits per step)."""
+    returns (chosen, current fit, its structure, fits per step).
+
+    The first is the one that explains more alone (lower BIC, both refitted with the same brake parameters): the
+    order of the forward steps was decided with the drum of that step, which a later step may have freed further."""
+    alone = [calibrate(data, [c], params, start=current.values) for c in chosen]
+    if alone[1].bic < alone[0].bic:
+        chosen = [chosen[1], chosen[0]]
+        fits = [alone[1], current]
+        steps.append({"step": "order", "first": chosen[0], "delta_bic": float(alone[0].bic - alone[1].bic)})
+        ev.append(f"With the drum both share, {chosen[0]} alone explains more than {chosen[1]} alone (BIC lower by "
+                  f"{alone[0].bic - alone[1].bic:.1f}): it is the first of the two.")
     own = beyond_reform(data, params, chosen[:1], current, current, refree)
     if own is None:
         return chosen, current, struct, fits
