@@ -2,6 +2,7 @@
 did not make (tests/identify/bench_generator.py, tests/identify/heldout_names.py)."""
 import os
 
+import numpy as np
 import pytest
 
 from rollaway.identify.diagnose import diagnose
@@ -69,3 +70,22 @@ def test_the_first_of_two_is_the_one_that_explains_more_with_the_drum_they_share
     assert "lining_creep" in named, d.verdict
     order = [s for s in d.steps if s.get("step") == "order"]
     assert order and order[0]["first"] == "lining_creep"
+
+
+def test_a_second_effect_is_sought_beside_the_first_re_formed():
+    """Friction quadratic in temperature and an exponential lining creep on a drum with its own eq. (24) law
+    (1-min, 8 tests; the setting of a two-effect band campaign): beside the catalogue's linear friction the
+    forward step picks a cable relaxation, which is no better than the friction re-formed, and the friction
+    re-formed alone leaves structure.  Screened beside the re-formed friction, the lining creep passes: both are
+    named (before: "none: structure remains")."""
+    rng = np.random.default_rng(6637)
+    effects = list(rng.choice(["friction_linear", "creep_exponential", "cable_exponential", "gap", "modulus_linear",
+                               "radiation", "friction_quadratic", "friction_fade_above", "modulus_sigmoid",
+                               "creep_power_law", "cable_log"], 2, replace=False))
+    assert effects == ["friction_quadratic", "creep_exponential"]
+    mu, h = rng.uniform(0.3, 0.45), rng.uniform(25.0, 45.0)
+    drum = list(OTHER_DRUMS.values())[rng.integers(len(OTHER_DRUMS))]
+    d = diagnose(generate(effects, sampling="1min", seed=6637, mu=mu, h=h, drum=drum,
+                          forces=np.linspace(180.0, 360.0, 4), t0_range=(100.0, 250.0)))
+    assert {e["effect"] for e in d.effects} == {"friction_temperature", "lining_creep"}, d.verdict
+    assert any(s.get("step") == "beside the re-formed first" for s in d.steps)

@@ -273,7 +273,6 @@ def beyond_reform(data, params, chosen: list[str], current: FitResult, two: FitR
     freed, the second effect must also still lower BIC below :data:`BIC_THRESHOLD` against the first effect alone
     (``delta_bic_refreed``)."""
     from rollaway.effects import get_effect
-    from rollaway.identify.ambiguity import HELDOUT_SE, SMALL_ELPD
     from rollaway.identify.shape import covariate_of, flexible_effect, shape_hook
     if len(chosen) != 1 or two.jacobian is None:
         return None
@@ -294,8 +293,15 @@ def beyond_reform(data, params, chosen: list[str], current: FitResult, two: FitR
     reform = calibrate(data, [flex], params, start=current.values, max_iterations=REFORM_ITERATIONS)
     if reform.jacobian is None:
         return None
-    d = data
-    rows = np.concatenate([d.test_index, d.test_index])
+    out = _heldout_preference(data, two, reform)
+    out.update(reform_effect=flex.name, delta_bic_refreed=delta_bic)
+    out["passes"] = bool(out["passes"] and (delta_bic is None or delta_bic < BIC_THRESHOLD))
+    return out
+
+
+def _heldout_preference(d, two: FitResult, reform: FitResult) -> dict:
+    """Held-out comparison of *two* against *reform* (:func:`beyond_reform`'s rule, without its BIC condition)."""
+    from rollaway.identify.ambiguity import HELDOUT_SE, SMALL_ELPD
     n = len(d)
     out = {"channels": {}}
     per = {}
@@ -312,19 +318,18 @@ def beyond_reform(data, params, chosen: list[str], current: FitResult, two: FitR
     total = sum(-0.5 * (per["two"][ch] - per["reform"][ch]) for ch in ("temperature", "torque"))
     se = float(np.sqrt(total.size * np.var(total, ddof=1))) if total.size > 1 else np.inf
     better = int((total > 0).sum())
-    out.update(heldout_elpd=float(total.sum()), heldout_se=se, reform_effect=flex.name, better_tests=better,
-               tests=int(total.size), per_test=[float(x) for x in total],
-               delta_bic_refreed=delta_bic,
+    out.update(heldout_elpd=float(total.sum()), heldout_se=se, better_tests=better, tests=int(total.size),
+               per_test=[float(x) for x in total],
                passes=bool(ok and total.sum() > max(SECOND_EFFECT_SE * se, SMALL_ELPD) and 2 * better > total.size
-                           and total.sum() - total.max() > SMALL_ELPD
-                           and (delta_bic is None or delta_bic < BIC_THRESHOLD)))
+                           and total.sum() - total.max() > SMALL_ELPD))
     return out
 
 
-def own_evidence(data, params, chosen, current, struct, fits, nq, nt, steps, ev, refree=()):
+def own_evidence(data, params, chosen, current, struct, fits, nq, nt, steps, ev, refree=(), names=()):
     """Keep the second of two selected effects only if it predicts held-out tests better than the first
     re-formed, with the brake parameters *refree* (held as not needed by the bare drum) freed in both
-    (:func:`beyond_reform`); else drop it and keep the first alone.  Logs to *steps*, explains in *ev*;
+    (:func:`beyond_reform`); else the effect of *names* that does beside the first re-formed
+    (:func:`beside_reformed`), or none: keep the first alone.  Logs to *steps*, explains in *ev*;
     returns (chosen, current fit, its structure, fits per step).
 
     The first is the one that explains more alone (lower BIC, both refitted with the same brake parameters): the
@@ -344,6 +349,15 @@ def own_evidence(data, params, chosen, current, struct, fits, nq, nt, steps, ev,
         return chosen, current, struct, fits
     first = fits[0] if fits and fits[0] is not None and fits[0].effects == chosen[:1] else \
         calibrate(data, chosen[:1], params, start=current.values)
+    other = beside_reformed(data, params, chosen[0], first, names, nq, nt) if names else None
+    if other is not None:
+        name, pair, dbic, pref = other
+        steps.append({"step": "beside the re-formed first", "effect": name, "delta_bic": dbic, "heldout": pref})
+        ev.append(f"{chosen[1]} is not beyond {chosen[0]} re-formed, but beside {chosen[0]} re-formed (its hook as a "
+                  f"linear spline) {name} lowers BIC by {-dbic:.1f} and predicts held-out tests better (log score "
+                  f"{pref['heldout_elpd']:+.1f} ± {pref['heldout_se']:.1f}, better in {pref['better_tests']} of "
+                  f"{pref['tests']} tests): a mis-formed {chosen[0]} hid it; {name} is named on that evidence.")
+        return [chosen[0], name], pair, structure(pair, nq, nt), [first, pair]
     ev.append(f"{chosen[1]} lowers BIC and predicts held-out tests better beside {chosen[0]}, but not beyond "
               f"{chosen[0]} re-formed (its hook as a linear spline, no second effect"
               + (f"; {', '.join(refree)} freed in both" if refree else "") + "): held-out log score "
@@ -351,3 +365,36 @@ def own_evidence(data, params, chosen, current, struct, fits, nq, nt, steps, ev,
               f"{own['tests']} tests — a partner that only absorbs the first effect's form mismatch or a departure "
               f"of the drum; not named.")
     return chosen[:1], first, structure(first, nq, nt), [first]
+
+
+def beside_reformed(data, params, first: str, first_fit: FitResult, names, nq: Noise, nt: Noise):
+    """A second effect on the evidence it has beside the first effect *first* re-formed (its hook as a linear
+    spline, :func:`rollaway.identify.shape.flexible_effect`), for when the first's catalogue form is wrong: then
+    the pair keeps the first's misfit and the first re-formed absorbs part of the second, and a forward step on
+    the catalogue form can pick the wrong second effect.  Only when the first re-formed still leaves structure.
+    Each effect of *names* is screened beside the re-formed first (:data:`SCREEN_ITERATIONS`); the best by BIC
+    is refitted and must lower BIC below :data:`BIC_THRESHOLD` and predict held-out tests better by
+    :func:`beyond_reform`'s rule.  Returns (name, the catalogue pair's fit, ΔBIC, held-out comparison) or None."""
+    from rollaway.effects import get_effect
+    from rollaway.identify.shape import covariate_of, flexible_effect, shape_hook
+    found = shape_hook(get_effect(first))
+    flex = None if found is None else flexible_effect(get_effect(first), covariate_of(first_fit, found[1]))
+    if flex is None:
+        return None
+    reform = calibrate(data, [flex], params, start=first_fit.values, max_iterations=REFORM_ITERATIONS)
+    if reform.jacobian is None or not structure(reform, nq, nt)["structured"]:
+        return None
+    screened = [(calibrate(data, [flex, c], params, start=reform.values, statistics=False,
+                           max_iterations=SCREEN_ITERATIONS), c)
+                for c in names if c != first and not get_effect(c).per_test_parameters()]
+    if not screened:
+        return None
+    name = min(screened, key=lambda t: t[0].bic)[1]
+    both = calibrate(data, [flex, name], params, start=reform.values)
+    if both.jacobian is None or both.bic - reform.bic >= BIC_THRESHOLD:
+        return None
+    pref = _heldout_preference(data, both, reform)
+    if not pref["passes"]:
+        return None
+    pair = calibrate(data, [first, name], params, start=both.values)
+    return name, pair, float(both.bic - reform.bic), pref
