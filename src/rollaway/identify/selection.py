@@ -19,7 +19,7 @@ from rollaway.uncertainty.heldout import FOLDS, LOO_TESTS, folds, loto_residuals
 
 BIC_THRESHOLD = -10.0        # "very strong" evidence (Kass & Raftery 1995)
 CV_TOP = 3                   # cross-validate at most this many candidates per step
-SCREEN_ITERATIONS = 6        # Levenberg–Marquardt iterations of a candidate's ranking fit
+SCREEN_ITERATIONS = 6        # a ranking fit's MINPACK budget: SCREEN_ITERATIONS·(k + 1) residual calls
 SECOND_EFFECT_SE = 1.0       # a second effect beats the re-formed first by > 1 SE of the held-out difference,
                              # better in more than half of the tests [assumed; 2 SE lost true pairs on 8 tests]
 REFORM_ITERATIONS = 8        # Levenberg–Marquardt iterations per pass of the re-formed first effect (its BIC within
