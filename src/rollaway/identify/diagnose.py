@@ -14,7 +14,7 @@
    ``form: "partial"`` and the shape the data want is returned.  Otherwise nothing is
    claimed: verdict ``none`` with ``remaining_structure: true`` (an effect outside the
    catalogue remains).
-4. A second effect is named only on its own evidence (:func:`rollaway.identify.selection.own_evidence`); a
+4. A second effect is named only on its own evidence (:func:`rollaway.identify.partner.own_evidence`); a
    ``none`` verdict may carry weak alternatives (:func:`rollaway.identify.ambiguity.weak_alternatives`).
 """
 from __future__ import annotations
@@ -34,9 +34,10 @@ from rollaway.bench.measurements import Measurements
 from rollaway.bench.noise import Noise, noise_estimate, sample_sigma
 from rollaway.identify.detection import detection_limits, limits_words
 from rollaway.identify.diagnose_words import describe_residual, no_candidate_words, noise_words, structure_words
+from rollaway.identify.partner import own_evidence
 from rollaway.identify.selection import (BIC_THRESHOLD, SCREEN_ITERATIONS, Candidate, cv_score, eliminate, exchange,
-                                         folds, forward_step, has_per_test, own_evidence, per_test_signature,
-                                         structure, weighted_chi2)
+                                         folds, forward_step, has_per_test, per_test_signature, structure,
+                                         weighted_chi2)
 from rollaway.uncertainty.bands import validity
 
 MAX_EFFECTS = 2              # forward selection stops after this many effects (a third rarely survives CV)

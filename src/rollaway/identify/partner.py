@@ -1,0 +1,181 @@
+"""A second effect on its own evidence, for :mod:`rollaway.identify.diagnose`.
+
+Two effects that pass the forward steps are both named only when the second predicts held-out tests better than
+the first *re-formed* (its hook as a linear spline: :func:`beyond_reform`), with the pair ordered by what each
+explains alone (:func:`own_evidence`).  When the first effect's catalogue form is wrong and its re-formed
+version still leaves structure, a second effect is sought beside the re-formed first (:func:`beside_reformed`),
+and it must also beat its own re-formed version alone: one mis-formed effect is not a pair.
+"""
+from __future__ import annotations
+
+import numpy as np
+
+from rollaway.bench.noise import Noise
+from rollaway.identify.calibrate import FitResult, calibrate
+from rollaway.identify.selection import (BIC_THRESHOLD, REFORM_ITERATIONS, SCREEN_ITERATIONS, SECOND_EFFECT_SE,
+                                         structure)
+from rollaway.uncertainty.heldout import loto_residuals
+
+
+def beyond_reform(data, params, chosen: list[str], current: FitResult, two: FitResult, refree=()) -> dict | None:
+    """Does the fit *two* (the effect *chosen* plus a second one) predict held-out tests better than
+    the first effect re-formed — its hook changed by a linear spline of its covariate
+    (:func:`rollaway.identify.shape.flexible_effect`), no second effect?  A partner that only absorbs a
+    mis-formed first effect's misfit does not: then it is no discovery.  *current*: a fit whose prediction
+    gives the first effect's covariate (lining temperature, …) and the start values.
+
+    Returns None when the first effect has no flexible form (nothing to compare), else
+    ``{"passes", "heldout_elpd", "heldout_se", "better_tests", "channels"}``: *passes* when the held-out log
+    score of the two-effect model beats the re-formed one by more than :data:`SECOND_EFFECT_SE` standard
+    errors of the paired per-test difference (and by more than
+    :data:`rollaway.identify.ambiguity.SMALL_ELPD`), in more than half of the tests (folds; half is a coin
+    toss), by more than SMALL_ELPD also without its most favourable test (with a handful of tests one test's
+    misfit can carry the sum and inflate the standard error the rule is measured in), and neither channel
+    (drum temperature, torque) predicts worse beyond :data:`rollaway.identify.ambiguity.HELDOUT_SE` of its
+    own standard errors.
+
+    *refree*: brake parameters the drum calibration held at their assumed values although the data test
+    them ("not needed" without any effect): both compared fits free them.  A brake parameter that was not
+    needed by the bare drum can be needed once the first effect is in, and a second effect that stands in
+    for it (a gap or a radial contraction for a lining of another thickness) is then no discovery; with them
+    freed, the second effect must also still lower BIC below :data:`BIC_THRESHOLD` against the first effect alone
+    (``delta_bic_refreed``)."""
+    from rollaway.effects import get_effect
+    from rollaway.identify.shape import covariate_of, flexible_effect, shape_hook
+    if len(chosen) != 1 or two.jacobian is None:
+        return None
+    eff = get_effect(chosen[0])
+    found = shape_hook(eff)
+    flex = None if found is None else flexible_effect(eff, covariate_of(current, found[1]))
+    if flex is None:
+        return None
+    refree = [n for n in refree if n not in getattr(params, "free", ())]
+    delta_bic = None
+    if refree:
+        from rollaway.identify.model import DrumPlan
+        params = DrumPlan(params.params, tuple(params.free) + tuple(refree))
+        two = calibrate(data, two.effects, params, start=two.values)
+        if two.jacobian is None:
+            return None
+        delta_bic = two.bic - calibrate(data, chosen, params, start=current.values).bic
+    reform = calibrate(data, [flex], params, start=current.values, max_iterations=REFORM_ITERATIONS)
+    if reform.jacobian is None:
+        return None
+    out = _heldout_preference(data, two, reform)
+    out.update(reform_effect=flex.name, delta_bic_refreed=delta_bic)
+    out["passes"] = bool(out["passes"] and (delta_bic is None or delta_bic < BIC_THRESHOLD))
+    return out
+
+
+def _heldout_preference(d, two: FitResult, reform: FitResult) -> dict:
+    """Held-out comparison of *two* against *reform* (:func:`beyond_reform`'s rule, without its BIC condition)."""
+    from rollaway.identify.ambiguity import HELDOUT_SE, SMALL_ELPD
+    n = len(d)
+    out = {"channels": {}}
+    per = {}
+    for key, fit in (("reform", reform), ("two", two)):
+        r2 = loto_residuals(fit) ** 2
+        per[key] = {"temperature": np.bincount(d.test_index, r2[:n], d.n_tests),
+                    "torque": np.bincount(d.test_index, r2[n:], d.n_tests)}
+    ok = True
+    for ch in ("temperature", "torque"):
+        diff = -0.5 * (per["two"][ch] - per["reform"][ch])        # > 0: the two effects predict better
+        se = float(np.sqrt(diff.size * np.var(diff, ddof=1))) if diff.size > 1 else np.inf
+        out["channels"][ch] = {"heldout_elpd": float(diff.sum()), "heldout_se": se}
+        ok &= diff.sum() > -HELDOUT_SE * se
+    total = sum(-0.5 * (per["two"][ch] - per["reform"][ch]) for ch in ("temperature", "torque"))
+    se = float(np.sqrt(total.size * np.var(total, ddof=1))) if total.size > 1 else np.inf
+    better = int((total > 0).sum())
+    out.update(heldout_elpd=float(total.sum()), heldout_se=se, better_tests=better, tests=int(total.size),
+               per_test=[float(x) for x in total],
+               passes=bool(ok and total.sum() > max(SECOND_EFFECT_SE * se, SMALL_ELPD) and 2 * better > total.size
+                           and total.sum() - total.max() > SMALL_ELPD))
+    return out
+
+
+def own_evidence(data, params, chosen, current, struct, fits, nq, nt, steps, ev, refree=(), names=()):
+    """Keep the second of two selected effects only if it predicts held-out tests better than the first
+    re-formed, with the brake parameters *refree* (held as not needed by the bare drum) freed in both
+    (:func:`beyond_reform`); else the effect of *names* that does beside the first re-formed
+    (:func:`beside_reformed`), or none: keep the first alone.  Logs to *steps*, explains in *ev*;
+    returns (chosen, current fit, its structure, fits per step).
+
+    The first is the one that explains more alone (lower BIC, both refitted with the same brake parameters): the
+    order of the forward steps was decided with the drum of that step, which a later step may have freed further."""
+    alone = [calibrate(data, [c], params, start=current.values) for c in chosen]
+    if alone[1].bic < alone[0].bic:
+        chosen = [chosen[1], chosen[0]]
+        fits = [alone[1], current]
+        steps.append({"step": "order", "first": chosen[0], "delta_bic": float(alone[0].bic - alone[1].bic)})
+        ev.append(f"With the drum both share, {chosen[0]} alone explains more than {chosen[1]} alone (BIC lower by "
+                  f"{alone[0].bic - alone[1].bic:.1f}): it is the first of the two.")
+    own = beyond_reform(data, params, chosen[:1], current, current, refree)
+    if own is None:
+        return chosen, current, struct, fits
+    steps.append({"step": "own evidence", "effect": chosen[1], "kept": own["passes"], "beyond_reform": own})
+    if own["passes"]:
+        return chosen, current, struct, fits
+    first = fits[0] if fits and fits[0] is not None and fits[0].effects == chosen[:1] else \
+        calibrate(data, chosen[:1], params, start=current.values)
+    other = beside_reformed(data, params, chosen[0], first, names, nq, nt) if names else None
+    if other is not None:
+        name, pair, dbic, pref = other
+        steps.append({"step": "beside the re-formed first", "effect": name, "delta_bic": dbic, "heldout": pref})
+        ev.append(f"{chosen[1]} is not beyond {chosen[0]} re-formed, but beside {chosen[0]} re-formed (its hook as a "
+                  f"linear spline) {name} lowers BIC by {-dbic:.1f} and predicts held-out tests better (log score "
+                  f"{pref['heldout_elpd']:+.1f} ± {pref['heldout_se']:.1f}, better in {pref['better_tests']} of "
+                  f"{pref['tests']} tests): a mis-formed {chosen[0]} hid it; {name} is named on that evidence.")
+        return [chosen[0], name], pair, structure(pair, nq, nt), [first, pair]
+    ev.append(f"{chosen[1]} lowers BIC and predicts held-out tests better beside {chosen[0]}, but not beyond "
+              f"{chosen[0]} re-formed (its hook as a linear spline, no second effect"
+              + (f"; {', '.join(refree)} freed in both" if refree else "") + "): held-out log score "
+              f"{own['heldout_elpd']:+.1f} ± {own['heldout_se']:.1f}, better in {own['better_tests']} of "
+              f"{own['tests']} tests — a partner that only absorbs the first effect's form mismatch or a departure "
+              f"of the drum; not named.")
+    return chosen[:1], first, structure(first, nq, nt), [first]
+
+
+def beside_reformed(data, params, first: str, first_fit: FitResult, names, nq: Noise, nt: Noise):
+    """A second effect on the evidence it has beside the first effect *first* re-formed (its hook as a linear
+    spline, :func:`rollaway.identify.shape.flexible_effect`), for when the first's catalogue form is wrong: then
+    the pair keeps the first's misfit and the first re-formed absorbs part of the second, and a forward step on
+    the catalogue form can pick the wrong second effect.  Only when the first re-formed still leaves structure.
+    Each effect of *names* is screened beside the re-formed first (:data:`SCREEN_ITERATIONS`); the best by BIC
+    is refitted and must lower BIC below :data:`BIC_THRESHOLD` and predict held-out tests better by
+    :func:`beyond_reform`'s rule.  Returns (name, the catalogue pair's fit, ΔBIC, held-out comparison) or None."""
+    from rollaway.effects import get_effect
+    from rollaway.identify.shape import covariate_of, flexible_effect, shape_hook
+    found = shape_hook(get_effect(first))
+    flex = None if found is None else flexible_effect(get_effect(first), covariate_of(first_fit, found[1]))
+    if flex is None:
+        return None
+    reform = calibrate(data, [flex], params, start=first_fit.values, max_iterations=REFORM_ITERATIONS)
+    if reform.jacobian is None or not structure(reform, nq, nt)["structured"]:
+        return None
+    screened = [(calibrate(data, [flex, c], params, start=reform.values, statistics=False,
+                           max_iterations=SCREEN_ITERATIONS), c)
+                for c in names if c != first and not get_effect(c).per_test_parameters()]
+    if not screened:
+        return None
+    name = min(screened, key=lambda t: t[0].bic)[1]
+    both = calibrate(data, [flex, name], params, start=reform.values)
+    if both.jacobian is None or both.bic - reform.bic >= BIC_THRESHOLD:
+        return None
+    pref = _heldout_preference(data, both, reform)
+    if not pref["passes"] or not _beyond_own_reform(data, params, name, both):
+        return None
+    pair = calibrate(data, [first, name], params, start=both.values)
+    return name, pair, float(both.bic - reform.bic), pref
+
+
+def _beyond_own_reform(data, params, name: str, both: FitResult) -> bool:
+    """The pair *both* (the first re-formed beside *name*) also predicts held-out tests better than *name* re-formed
+    alone: else one mis-formed effect, *name*, is the story and the first was its stand-in."""
+    from rollaway.effects import get_effect
+    from rollaway.identify.shape import covariate_of, flexible_effect, shape_hook
+    found = shape_hook(get_effect(name))
+    flex = None if found is None else flexible_effect(get_effect(name), covariate_of(both, found[1]))
+    if flex is None:
+        return True
+    alone = calibrate(data, [flex], params, start=both.values, max_iterations=REFORM_ITERATIONS)
+    return alone.jacobian is None or _heldout_preference(data, both, alone)["passes"]
