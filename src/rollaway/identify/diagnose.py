@@ -312,8 +312,10 @@ def _predictive(data, refined: FitResult, pool: list[FitResult], n_effects: int,
     cannot tell from *refined* (named beside the verdict): always among the alternatives.  A fit competes when
     its BIC is within :data:`rollaway.uncertainty.bands.COMPETING_BIC` of *refined*'s or the held-out prediction
     does not rule it out (BIC alone is overconfident where residuals are autocorrelated); not a fit with per-test
-    values (a zero offset per test): its held-out score refits the held-out test's own values."""
+    values (a zero offset per test): its held-out score refits the held-out test's own values.  *refined*'s effects
+    in their shape-free forms compete as well (:func:`rollaway.identify.shape.form_rivals`)."""
     from rollaway.identify.ambiguity import not_ruled_out
+    from rollaway.identify.shape import form_rivals
     from rollaway.uncertainty.bands import COMPETING_BIC, alternatives, model_error
     from rollaway.model.predictive_record import record
     val = validity(data)
@@ -321,8 +323,10 @@ def _predictive(data, refined: FitResult, pool: list[FitResult], n_effects: int,
     if not pool:                  # the alternatives were weighed on the selection's rows (already attached)
         return
     comp = [f for f in pool if f is not refined and f.jacobian is not None and len(f.effects) <= 1
-            and not f.model.per_test_parameters()       # refits the held-out test's own values: no fair score
+            and not _per_test_effect(f)                 # refits the held-out test's own values: no fair score
             and (f.bic - refined.bic < COMPETING_BIC or not_ruled_out(refined, f))] if n_effects <= 1 else []
+    comp += [f for f in form_rivals(data, refined, drum.plan)     # the chosen physics in the data's own form
+             if not _per_test_effect(f)]
     mix = alternatives(refined, comp + [f for f in keep if all(f is not g for g in comp)], keep=keep)
     alts = []
     for w, f in mix:
@@ -333,6 +337,11 @@ def _predictive(data, refined: FitResult, pool: list[FitResult], n_effects: int,
         f.fit_info["calibration"] = drum.record()
         alts.append((w, f))
     refined.fit_info["alternatives"] = alts
+
+
+def _per_test_effect(fit: FitResult) -> bool:
+    """True when an effect of *fit* has values per test (each test's T_0, which every fit has, aside)."""
+    return any(p.per_test for e in fit.model.effects for p in e.parameters)
 
 
 def _test_offsets(fit: FitResult, nq: Noise) -> bool:

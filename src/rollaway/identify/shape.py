@@ -11,42 +11,12 @@ from __future__ import annotations
 
 import numpy as np
 
-from rollaway.effects.base import Effect, EffectParameter
+from rollaway.effects.base import Effect
+from rollaway.effects.shape_free import (  # noqa: F401  (read from here too)
+    HOOK_COVARIATE, TEMPERATURE_HOOKS, is_shape_free, shape_hook, spline_effect, spline_factor)
 
 KNOTS = 8                     # spline segments (equal widths over the covariate's range)
-HOOK_COVARIATE = {"friction": "lining_temp_C", "lining_modulus": "lining_temp_C", "clamp_force": "time_s",
-                  "displacement": "time_s", "gap": "time_s", "drum_temperature": "time_s",
-                  "lining_temperature": "time_s", "torque": "time_s"}
 COVARIATE_UNITS = {"time_s": "s", "lining_temp_C": "°C", "drum_temp_C": "°C", "hand_force_N": "N"}
-_TEMPERATURE_HOOKS = ("drum_temperature", "lining_temperature")
-
-
-def shape_hook(effect: Effect) -> tuple[str, str] | None:
-    """(hook, covariate) of an effect's flexible form; None for per-test effects (no shape to draw)."""
-    if any(p.per_test for p in effect.parameters):
-        return None
-    hooks = effect.overridden_hooks()
-    if not hooks:
-        return None
-    hook = hooks[0]
-    cov = effect.shape_covariate or HOOK_COVARIATE[hook]
-    if hook == "drum_temperature" and cov != "time_s":
-        cov = "time_s"          # nothing downstream of the drum temperature exists yet
-    return hook, cov
-
-
-def _covariate(state, name: str) -> np.ndarray:
-    return np.broadcast_to(np.asarray(getattr(state, name), float), state.time_s.shape)
-
-
-def spline_factor(x, knots, coef) -> np.ndarray:
-    """1 + Σ_j c_j·clip((x − k_j)/(k_{j+1} − k_j), 0, 1): a linear spline, 1 at the first knot."""
-    x = np.asarray(x, float)
-    g = np.zeros_like(x)
-    for j, c in enumerate(coef):
-        width = max(knots[j + 1] - knots[j], 1e-12)
-        g = g + c * np.clip((x - knots[j]) / width, 0.0, 1.0)
-    return 1.0 + g
 
 
 def spline_knots(x: np.ndarray, covariate: str) -> np.ndarray:
@@ -68,34 +38,33 @@ def spline_knots(x: np.ndarray, covariate: str) -> np.ndarray:
 
 
 def flexible_effect(effect: Effect, covariate_values: np.ndarray) -> type[Effect] | None:
-    """An Effect class changing *effect*'s quantity by a spline factor of its covariate."""
+    """*effect*'s shape-free version (:func:`rollaway.effects.shape_free.spline_effect`) with knots over the
+    covariate's values (:func:`spline_knots`); None when it has none or the values span fewer than two segments."""
     found = shape_hook(effect)
     if found is None:
         return None
-    hook, cov = found
-    x = np.asarray(covariate_values, float)
-    knots = spline_knots(x, cov)
-    if len(knots) < 3:
-        return None
-    n = len(knots) - 1
-    names = [f"c{j}" for j in range(n)]
+    knots = spline_knots(np.asarray(covariate_values, float), found[1])
+    return spline_effect(effect, knots) if len(knots) >= 3 else None
 
-    def apply(self, state, q, v):
-        f = spline_factor(_covariate(state, cov), knots, [v[k] for k in names])
-        if hook in _TEMPERATURE_HOOKS:
-            return state.ambient_C + (q - state.ambient_C) * f
-        return q * f
 
-    params = tuple(EffectParameter(k, "–", neutral=0.0, lower=-0.9, upper=0.9, initial=0.0,
-                                   description=f"change of the factor over knot segment {j}")
-                   for j, k in enumerate(names))
-    cls = type(f"Flexible_{effect.name}", (Effect,), {
-        "name": f"{effect.name}_shape", "summary": f"shape-free version of {effect.name}",
-        "physics": f"{hook} × (1 + linear spline in {cov}, {n} segments)", "signature": "",
-        "reference": "linear spline (no functional form assumed)", "parameters": params, hook: apply,
-        "elementwise": True,                  # fixed knots, each sample's own covariate
-        "knots": knots, "hook": hook, "covariate": cov})
-    return cls
+def form_rivals(data, fit, params) -> list:
+    """*fit*'s effect set with each effect in turn replaced by its shape-free version (:func:`flexible_effect`),
+    refitted with the brake parameters *params* frees: the same physics in every form the data allow.  A
+    catalogue form the residual cannot fault may still be wrong where the bench did not look (a creep law that
+    flattens too early leaves its later loss to the cooling law, and the split of μ_d against the eq. (24) slope
+    with it); these fits let the bands weigh that form against the catalogue's by held-out prediction."""
+    from rollaway.identify.calibrate import calibrate
+    effects = list(fit.model.effects)
+    out = []
+    for k, eff in enumerate(effects):
+        found = shape_hook(eff)
+        flex = None if found is None or is_shape_free(eff) else flexible_effect(eff, covariate_of(fit, found[1]))
+        if flex is None:
+            continue
+        f = calibrate(data, effects[:k] + [flex] + effects[k + 1:], params, start=fit.values)
+        if f.jacobian is not None:
+            out.append(f)
+    return out
 
 
 def covariate_of(fit, name: str) -> np.ndarray:
@@ -128,7 +97,7 @@ def shape_curves(effect: Effect, catalogue_fit, flex_fit, flex_cls, points: int 
              "displacement": np.full_like(st.time_s, 1e-4), "clamp_force": np.full_like(st.time_s, 1e3),
              "torque": np.full_like(st.time_s, 1e3)}
     x = covariate_of(catalogue_fit, cov)
-    if hook in _TEMPERATURE_HOOKS:
+    if hook in TEMPERATURE_HOOKS:
         base = np.asarray(pred.drum_temp_C, float)
         out = getattr(effect, hook)(st, base, v) if hook == "lining_temperature" else base
         cat = (out - st.ambient_C) / np.where(np.abs(base - st.ambient_C) > 1e-9, base - st.ambient_C, 1.0)

@@ -11,6 +11,11 @@ A model file is a parameter file (``extends`` + values that differ, see
     relaxation_time_s = 845.0
     # plugin = "my_effect.py"         # an effect from a plugin file (path relative to this file)
 
+    [effects.lining_creep_shape]      # an effect's shape-free form (rollaway.effects.shape_free):
+    knots = [0.0, 300.0, 3600.0]      # its spline's knots in the effect's covariate, then one value
+    c0 = -0.05                        # per knot segment
+    c1 = -0.04
+
     [covariance]                      # of the fitted parameters (names + matrix, SI units)
     names = ["mu_drum", "lining_creep.relaxed_fraction", ...]
     matrix = [[...], ...]
@@ -120,6 +125,7 @@ def _table(value, where: str, key: str) -> dict:
 
 def _effects(table, where: str, base_dir: Path | None):
     from rollaway.effects import available_effects, load_effect_file
+    from rollaway.effects.shape_free import SUFFIX as SHAPE_SUFFIX, from_model_file
 
     table = _table(table, where, "effects")
     effects, values, files = [], {}, {}
@@ -136,6 +142,8 @@ def _effects(table, where: str, base_dir: Path | None):
                 raise UserError(f"{where}: key 'effects.{name}.plugin': {exc}") from None
             files[name] = plugin
         known = available_effects()
+        if name not in known and name.endswith(SHAPE_SUFFIX):     # a shape-free form: its knots give the class
+            known = {name: from_model_file(name, entries.pop("knots", None), where)}
         if name not in known:
             raise UserError(f"{where}: unknown effect [effects.{name}]{suggest(name, known)}; run 'rollaway diagnose "
                             f"--list-effects' for the catalogue, or add plugin = \"file.py\" to the table")
@@ -278,6 +286,8 @@ def model_to_toml(model, comment: str = "") -> str:
         lines += ["", f"[effects.{e.name}]", f"# {e.summary}"]
         if e.name in model.effect_files:
             lines.append(f"plugin = {_value(model.effect_files[e.name])}")
+        if getattr(e, "knots", None) is not None:          # a shape-free form (rollaway.effects.shape_free)
+            lines.append(f"knots = {_value([float(k) for k in e.knots])}  # [{e.covariate}]")
         for p in e.parameters:
             key = f"{e.name}.{p.name}"
             unc = f" ± {se[key]:.3g}" if key in se else ""

@@ -26,7 +26,10 @@ question also depends on which effects were chosen and on how wrong the chosen f
   indistinguishable) get pseudo-BMA weights from their leave-one-test-out
   scores (Bayesian-bootstrap pseudo-BMA: w ∝ exp(−½·Σ score) averaged over Dirichlet reweightings
   of the tests; Yao et al. 2018, "Using stacking to average Bayesian predictive distributions",
-  §3.1, with the Gaussian log score); draws are split among them;
+  §3.1, with the Gaussian log score); draws are split among them.  The chosen effects' own forms compete
+  too: the same set with each effect shape-free (:func:`rollaway.identify.shape.form_rivals`) is weighed
+  the same way, so a catalogue form the residual cannot fault but the held-out tests do not prefer leaves
+  its doubt in the band;
 * **validity** — the tested hand forces, directions, start temperatures and hold duration.  A
   road question outside them is flagged and the model error is widened by
   :func:`rollaway.uncertainty.predictive.extrapolation` (hand force, T_0 and duration by their distance
@@ -178,9 +181,14 @@ def sized(fit) -> bool:
     """True when the data size every effect parameter of *fit* (relative standard error ≤
     :data:`MAX_RELATIVE_SE`, not at a bound) and pin each brake parameter it frees better than that
     parameter's assumed spread: an effect set the data cannot size is no competing explanation — its
-    draws would wander through magnitudes (and brake parameters) the data never supported."""
+    draws would wander through magnitudes (and brake parameters) the data never supported.  The coefficients of
+    a shape-free form (:mod:`rollaway.effects.shape_free`) are not sized: its held-out weight judges it."""
+    from rollaway.effects.shape_free import is_shape_free
     from rollaway.model.drum_parameters import FREE_PARAMETERS
+    shapes = {e.name for e in getattr(getattr(fit, "model", None), "effects", ()) if is_shape_free(e)}
     for name, e in fit.estimates.items():
+        if name.split(".")[0] in shapes:     # a spline's coefficients are a shape, not magnitudes to size
+            continue
         if "." not in name:        # a brake parameter: the data must pin it better than its assumed spread
             spec = FREE_PARAMETERS.get(name)
             if spec is not None and not (np.isfinite(e.stderr) and e.stderr <= spec.spread(e.value)):

@@ -1,0 +1,70 @@
+"""Shape-free forms: a spline factor on an effect's hook quantity, and their place in model files."""
+import numpy as np
+import pytest
+
+from rollaway.effects import get_effect
+from rollaway.effects.shape_free import from_model_file, is_shape_free, shape_hook, spline_effect, spline_factor
+from rollaway.errors import UserError
+from rollaway.model.drum_model import DrumModel, load_model
+from rollaway.model.model_file import model_to_toml, save_model
+
+T = np.linspace(0, 3600, 37)
+KNOTS = [0.0, 300.0, 900.0, 3600.0]
+
+
+def test_spline_factor_is_one_at_the_first_knot_piecewise_linear_and_flat_beyond():
+    f = spline_factor([0.0, 150.0, 300.0, 600.0, 3600.0, 9000.0], KNOTS, [-0.02, -0.03, -0.01])
+    np.testing.assert_allclose(f, [1.0, 0.99, 0.98, 0.965, 0.94, 0.94])
+
+
+def test_a_shape_free_creep_with_the_catalogue_law_at_its_knots_matches_it_there():
+    creep = get_effect("lining_creep")
+    cls = spline_effect(creep, KNOTS)
+    assert is_shape_free(cls) and cls.name == "lining_creep_shape" and shape_hook(creep) == ("clamp_force", "time_s")
+    loss = lambda t: 0.1 * (1 - np.exp(-np.asarray(t) / 900.0))                      # noqa: E731
+    coef = -np.diff(loss(KNOTS))
+    spline = DrumModel("paper", [cls], {f"lining_creep_shape.c{j}": c for j, c in enumerate(coef)})
+    law = DrumModel("paper", ["lining_creep"], {"lining_creep.relaxed_fraction": 0.1,
+                                                "lining_creep.relaxation_time_s": 900.0})
+    a, b = (m.evaluate(np.array(KNOTS), 250.0, initial_temp_C=200.0).torque_Nm for m in (spline, law))
+    np.testing.assert_allclose(a, b, rtol=1e-9)
+    between = np.array([600.0, 2000.0])         # a chord of a concave loss lies below it: the spline loses less
+    a, b = (m.evaluate(between, 250.0, initial_temp_C=200.0).torque_Nm for m in (spline, law))
+    assert np.all(a > b)
+
+
+def test_a_model_file_keeps_a_shape_free_form_and_its_torque(tmp_path):
+    cls = spline_effect(get_effect("friction_temperature"), [30.0, 100.0, 200.0, 300.0])
+    m = DrumModel("paper", [cls], {"friction_temperature_shape.c0": 0.02, "friction_temperature_shape.c1": -0.05,
+                                   "friction_temperature_shape.c2": -0.1})
+    back = load_model(save_model(m, tmp_path / "m.toml"))
+    assert [e.name for e in back.effects] == ["friction_temperature_shape"] and back.values == m.values
+    assert np.array_equal(back.evaluate(T, 300.0, initial_temp_C=250.0).torque_Nm,
+                          m.evaluate(T, 300.0, initial_temp_C=250.0).torque_Nm)
+    assert model_to_toml(back) == model_to_toml(m)
+    assert "knots = [30.0, 100.0, 200.0, 300.0]" in model_to_toml(m)
+
+
+@pytest.mark.parametrize("table, needle", [
+    ("[effects.lining_crep_shape]\nknots = [0, 1, 2]\n", "did you mean 'lining_creep'"),
+    ("[effects.lining_creep_shape]\nc0 = 0.1\n", "needs 'knots'"),
+    ("[effects.lining_creep_shape]\nknots = [0, 2, 1]\n", "key 'effects.lining_creep_shape.knots'"),
+    ("[effects.lining_creep_shape]\nknots = [0, 1]\n", "at least three"),
+    ("[effects.lining_creep_shape]\nknots = [0, 1, 2]\nc5 = 0.1\n", "unknown key 'effects.lining_creep_shape.c5'"),
+    ("[effects.lining_creep_shape]\nknots = [0, 1, 2]\nc0 = 2.0\n", "outside [-0.9, 0.9]"),
+    ("[effects.torque_zero_offset_shape]\nknots = [0, 1, 2]\n", "no shape-free version"),
+])
+def test_bad_shape_free_tables_are_one_line_errors_naming_the_key(tmp_path, run_cli, table, needle):
+    path = tmp_path / "bad.toml"
+    path.write_text('extends = "paper"\n' + table, encoding="utf-8")
+    with pytest.raises(UserError) as exc:
+        load_model(path)
+    assert needle in str(exc.value) and str(path) in str(exc.value)
+    code, _, err = run_cli("hold", "--grade-pct", 20, "--hand-force-N", 300, "--params", path)
+    assert code == 2 and needle in err and len(err.strip().splitlines()) == 1
+
+
+def test_from_model_file_builds_the_catalogue_effects_spline():
+    cls = from_model_file("cable_relaxation_shape", [0.0, 600.0, 3600.0], "m.toml")
+    assert cls.base == "cable_relaxation" and list(cls.knots) == [0.0, 600.0, 3600.0]
+    assert [p.name for p in cls.parameters] == ["c0", "c1"]
