@@ -75,7 +75,8 @@ def spline_effect(effect, knots) -> type[Effect]:
         "physics": f"{hook} × (1 + linear spline in {cov}, {len(names)} segments)", "signature": "",
         "reference": "linear spline (no functional form assumed)", "parameters": params, hook: apply,
         "elementwise": True,                  # fixed knots, each sample's own covariate
-        "knots": knots, "hook": hook, "covariate": cov, "base": effect.name})
+        "knots": knots, "hook": hook, "covariate": cov, "base": effect.name,
+        **({"__rollaway_source__": src} if (src := getattr(effect, "__rollaway_source__", None)) else {})})
 
 
 def is_shape_free(effect) -> bool:

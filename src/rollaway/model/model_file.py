@@ -268,9 +268,28 @@ def _value(v) -> str:
     return tomli_w.dumps({"x": v}).split("=", 1)[1].strip()
 
 
-def model_to_toml(model, comment: str = "") -> str:
+def _plugin_path(model, effect, base_dir: Path | None) -> str | None:
+    """The plugin file *effect* came from, as a model file in *base_dir* names it (relative where it can be)."""
+    import os
+    where = model.effect_files.get(effect.name)
+    if where is not None:
+        return where
+    source = getattr(type(effect), "__rollaway_source__", None)
+    if source is None:
+        return None
+    source = Path(source).resolve()
+    if base_dir is None:
+        return str(source)
+    try:
+        return Path(os.path.relpath(source, Path(base_dir).resolve())).as_posix()
+    except ValueError:        # another drive (Windows)
+        return str(source)
+
+
+def model_to_toml(model, comment: str = "", base_dir: Path | None = None) -> str:
     """A :class:`~rollaway.model.drum_model.DrumModel` as a model file a person can read and edit (round-trips through
-    :func:`read_model`)."""
+    :func:`read_model`).  An effect from a plugin file is written with ``plugin =`` that file (relative to
+    *base_dir*, the model file's folder, where given)."""
     base_name = model.base if model.base in PARAMETER_SETS else "paper"
     base = BrakeParameters(**PARAMETER_SETS[base_name], name=base_name)
     se = model.covariance.stderr if model.covariance is not None else {}
@@ -284,8 +303,9 @@ def model_to_toml(model, comment: str = "") -> str:
             lines.append(f"{key} = {_value(v):<24} # [{SPEC_BY_NAME[key].unit}]{unc}")
     for e in model.effects:
         lines += ["", f"[effects.{e.name}]", f"# {e.summary}"]
-        if e.name in model.effect_files:
-            lines.append(f"plugin = {_value(model.effect_files[e.name])}")
+        plugin = _plugin_path(model, e, base_dir)
+        if plugin is not None:
+            lines.append(f"plugin = {_value(plugin)}")
         if getattr(e, "knots", None) is not None:          # a shape-free form (rollaway.effects.shape_free)
             lines.append(f"knots = {_value([float(k) for k in e.knots])}  # [{e.covariate}]")
         for p in e.parameters:
@@ -324,10 +344,11 @@ def save_model(model, path: str | Path, comment: str = "") -> Path:
         alts = []
         for k, (w, alt) in enumerate(model._alternatives, 1):
             f = p.with_name(f"{p.stem}.alt{k}.toml")
-            f.write_text(model_to_toml(alt, f"Competing effect set {k} of {p.name} (weight {w:.3g})."), encoding="utf-8")
+            f.write_text(model_to_toml(alt, f"Competing effect set {k} of {p.name} (weight {w:.3g}).", p.parent),
+                         encoding="utf-8")
             alts.append({"weight": float(w), "file": f.name})
         model.predictive = {**model.predictive, "alternatives": alts}
-    p.write_text(model_to_toml(model, comment), encoding="utf-8")
+    p.write_text(model_to_toml(model, comment, p.parent), encoding="utf-8")
     return p
 
 
