@@ -22,6 +22,14 @@ def test_a_plugin_effect_cannot_be_exported(run_cli, tmp_path):
     assert not (tmp_path / "x.fmu").exists()
 
 
+def test_a_shape_free_form_cannot_be_exported(run_cli, tmp_path):
+    model = tmp_path / "shape.toml"
+    model.write_text('extends = "paper"\n\n[effects.lining_creep_shape]\nknots = [0.0, 300.0, 3600.0]\nc0 = -0.05\n')
+    err = one_line_error(run_cli, "export-fmu", "--params", model, tmp_path / "x.fmu")
+    assert "lining_creep_shape" in err and "shape-free form of lining_creep" in err
+    assert not (tmp_path / "x.fmu").exists()
+
+
 def test_without_gcc_a_one_line_error(run_cli, tmp_path, monkeypatch):
     monkeypatch.setenv("PATH", str(tmp_path))
     err = one_line_error(run_cli, "export-fmu", tmp_path / "x.fmu")

@@ -51,7 +51,12 @@ def fmi_headers_dir(headers=FMI2_HEADERS) -> Path:
 def exportable(model) -> None:
     """UserError if *model* cannot become C code: a plugin effect, or a shoe that self-locks."""
     from rollaway.effects import CATALOGUE
+    from rollaway.effects.shape_free import is_shape_free
     for e in model.effects:
+        if is_shape_free(e):
+            raise UserError(f"effect '{e.name}' is the shape-free form of {e.base} (a spline fitted to the bench data, "
+                            f"one of the competing effect sets of a diagnosis); it has no C code for an FMU — export "
+                            f"the main model file, or a model with {e.base} in its catalogue form")
         if CATALOGUE.get(e.name) is not type(e) or not has_c_effect(e.name):
             where = model.effect_files.get(e.name) or getattr(type(e), "__rollaway_source__", None) \
                 or type(e).__module__
