@@ -70,13 +70,21 @@ def spline_effect(effect, knots) -> type[Effect]:
     params = tuple(EffectParameter(k, "–", neutral=0.0, lower=-COEFFICIENT_BOUND, upper=COEFFICIENT_BOUND,
                                    initial=0.0, description=f"change of the factor over knot segment {j}")
                    for j, k in enumerate(names))
+    base, knot_list = effect.name, tuple(float(k) for k in knots)
     return type(f"ShapeFree_{effect.name}", (Effect,), {
+        "__reduce__": lambda self: (_instance, (base, knot_list)),     # pickled as its base and knots
         "name": f"{effect.name}{SUFFIX}", "summary": f"shape-free version of {effect.name}",
         "physics": f"{hook} × (1 + linear spline in {cov}, {len(names)} segments)", "signature": "",
         "reference": "linear spline (no functional form assumed)", "parameters": params, hook: apply,
         "elementwise": True,                  # fixed knots, each sample's own covariate
         "knots": knots, "hook": hook, "covariate": cov, "base": effect.name,
         **({"__rollaway_source__": src} if (src := getattr(effect, "__rollaway_source__", None)) else {})})
+
+
+def _instance(base: str, knots) -> Effect:
+    """An instance of *base*'s shape-free form with *knots* (how one is unpickled: its class is built at run time)."""
+    from rollaway.effects import get_effect
+    return spline_effect(get_effect(base), knots)()
 
 
 def is_shape_free(effect) -> bool:

@@ -113,22 +113,18 @@ def set_rivals(data, plan, names: list[str], chosen: list[str], current, inflati
     refitted.  At most :data:`MAX_RIVALS`, best first, each as :func:`rivals` gives them plus
     ``"verdict_effects"`` (*chosen*)."""
     from rollaway.effects import get_effect
-    from rollaway.identify.calibrate import calibrate
+    from rollaway.identify.workers import fit_all
     if current.jacobian is None:
         return []
     k = max(inflation, 1.0)
-    trials = []
-    for i in range(len(chosen)):
-        for new in names:
-            if new in chosen or get_effect(new).per_test_parameters():
-                continue
-            trial = chosen[:i] + [new] + chosen[i + 1:]
-            fit = calibrate(data, trial, plan, start=current.values, statistics=False, max_iterations=screen_iterations)
-            if (fit.bic - current.bic) / k < INDISTINGUISHABLE_BIC + 4.0:    # a loose screen
-                trials.append(trial)
+    swaps = [chosen[:i] + [new] + chosen[i + 1:] for i in range(len(chosen)) for new in names
+             if new not in chosen and not get_effect(new).per_test_parameters()]
+    screens = fit_all(data, [(t, plan, dict(start=current.values, statistics=False, max_iterations=screen_iterations))
+                             for t in swaps])
+    trials = [t for t, fit in zip(swaps, screens)
+              if (fit.bic - current.bic) / k < INDISTINGUISHABLE_BIC + 4.0]       # a loose screen
     out = []
-    for trial in trials:
-        fit = calibrate(data, trial, plan, start=current.values)
+    for trial, fit in zip(trials, fit_all(data, [(t, plan, dict(start=current.values)) for t in trials])):
         dbic = (fit.bic - current.bic) / k
         if fit.jacobian is None or dbic >= INDISTINGUISHABLE_BIC:
             continue

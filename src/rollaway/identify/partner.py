@@ -12,6 +12,7 @@ import numpy as np
 
 from rollaway.bench.noise import Noise
 from rollaway.identify.calibrate import FitResult, calibrate
+from rollaway.identify.workers import fit_all
 from rollaway.identify.selection import (BIC_THRESHOLD, REFORM_ITERATIONS, SCREEN_ITERATIONS, SECOND_EFFECT_SE,
                                          structure)
 from rollaway.uncertainty.heldout import loto_residuals
@@ -102,7 +103,7 @@ def own_evidence(data, params, chosen, current, struct, fits, nq, nt, steps, ev,
 
     The first is the one that explains more alone (lower BIC, both refitted with the same brake parameters): the
     order of the forward steps was decided with the drum of that step, which a later step may have freed further."""
-    alone = [calibrate(data, [c], params, start=current.values) for c in chosen]
+    alone = fit_all(data, [([c], params, dict(start=current.values)) for c in chosen])
     if alone[1].bic < alone[0].bic:
         chosen = [chosen[1], chosen[0]]
         fits = [alone[1], current]
@@ -152,9 +153,10 @@ def beside_reformed(data, params, first: str, first_fit: FitResult, names, nq: N
     reform = calibrate(data, [flex], params, start=first_fit.values, max_iterations=REFORM_ITERATIONS)
     if reform.jacobian is None or not structure(reform, nq, nt)["structured"]:
         return None
-    screened = [(calibrate(data, [flex, c], params, start=reform.values, statistics=False,
-                           max_iterations=SCREEN_ITERATIONS), c)
-                for c in names if c != first and not get_effect(c).per_test_parameters()]
+    others = [c for c in names if c != first and not get_effect(c).per_test_parameters()]
+    screened = list(zip(fit_all(data, [([flex, c], params, dict(start=reform.values, statistics=False,
+                                                                max_iterations=SCREEN_ITERATIONS)) for c in others]),
+                        others))
     if not screened:
         return None
     name = min(screened, key=lambda t: t[0].bic)[1]

@@ -11,6 +11,7 @@ from dataclasses import dataclass
 
 import numpy as np
 
+from rollaway.identify.workers import run_fits
 from rollaway.identify.calibrate import FitResult, calibrate
 from rollaway.bench.measurements import Measurements
 from rollaway.bench.noise import Noise
@@ -150,28 +151,31 @@ def forward_step(data, params, names, current: FitResult, chosen: list[str], ste
     *screen*: fit the candidates with the brake parameters held, then refit the best few jointly
     (faster, but an effect the calibrated drum has partly absorbed can be missed)."""
     start = {k: v for k, v in current.values.items()}
-    cands = []
     held, n_held = _held_plan(params, current) if screen else (params, 0)
+    tried, calls, plans = [], [], []
     for name in names:
         if name in chosen or (not per_test_ok and has_per_test(name)):
             continue
         if has_per_test(name) and held is params:      # per-test fits are the costly ones: screen them
             h, k = _held_plan(params, current)
-            fit = calibrate(data, chosen + [name], h, start=start)
-            fit = calibrate(data, chosen + [name], params, start=fit.values, statistics=True)
+            calls.append((_per_test_screen, (chosen + [name], h, params), dict(start=start)))
         elif held is params:                            # a short joint fit ranks; the best few are finished below
             h, k = held, 0
-            fit = calibrate(data, chosen + [name], params, start=start, max_iterations=SCREEN_ITERATIONS)
+            calls.append((calibrate, (chosen + [name], params), dict(start=start, max_iterations=SCREEN_ITERATIONS)))
         else:
             h, k = held, n_held
-            fit = calibrate(data, chosen + [name], held, start=start)     # screening: brake parameters held
-        cands.append(Candidate(name, fit, fit.bic + k * np.log(2 * len(data)) * (h is not params) - current.bic,
-                               fit.aic + 2 * k * (h is not params) - current.aic, step=step))
+            calls.append((calibrate, (chosen + [name], held), dict(start=start)))     # brake parameters held
+        tried.append(name)
+        plans.append((h, k))
+    cands = [Candidate(name, fit, fit.bic + k * np.log(2 * len(data)) * (h is not params) - current.bic,
+                       fit.aic + 2 * k * (h is not params) - current.aic, step=step)
+             for name, (h, k), fit in zip(tried, plans, run_fits(data, calls))]
     cands.sort(key=lambda c: c.delta_bic)
-    for c in cands[:REFIT_TOP]:                        # the best few refitted with the brake parameters free
-        if held is not params or not has_per_test(c.effect):
-            c.fit = calibrate(data, chosen + [c.effect], params, start=c.fit.values)
-            c.delta_bic, c.delta_aic = c.fit.bic - current.bic, c.fit.aic - current.aic
+    top = [c for c in cands[:REFIT_TOP] if held is not params or not has_per_test(c.effect)]
+    for c, fit in zip(top, run_fits(data, [(calibrate, (chosen + [c.effect], params), dict(start=c.fit.values))
+                                           for c in top])):   # the best few refitted with the brake parameters free
+        c.fit = fit
+        c.delta_bic, c.delta_aic = c.fit.bic - current.bic, c.fit.aic - current.aic
     cands.sort(key=lambda c: c.delta_bic)
     strong = [c for c in cands if c.delta_bic < BIC_THRESHOLD and c.fit.jacobian is not None
               or c.delta_bic < BIC_THRESHOLD and held is params][:CV_TOP]
@@ -185,6 +189,12 @@ def forward_step(data, params, names, current: FitResult, chosen: list[str], ste
             c.cv_better_tests = int((s < cur_scores).sum())
     passing = [c for c in strong if c.cv_score is not None and c.cv_score < cur_cv]
     return cands, strong, passing, cur_cv
+
+
+def _per_test_screen(data, effects, held, params, start):
+    """A per-test effect's screen: fitted with the brake parameters *held*, then with those of *params* free."""
+    fit = calibrate(data, effects, held, start=start)
+    return calibrate(data, effects, params, start=fit.values, statistics=True)
 
 
 def _held_plan(params, current: FitResult):

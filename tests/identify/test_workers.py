@@ -1,0 +1,79 @@
+"""Independent fits on several cores: the same fits as one after another, and the cases that stay in-process."""
+import multiprocessing as mp
+import pickle
+
+import numpy as np
+import pytest
+
+from rollaway.errors import UserError
+from rollaway.identify import workers
+from rollaway.identify.calibrate import calibrate
+from rollaway.identify.workers import cores, fit_all, run_fits
+from tests.identify.bench_generator import generate
+
+
+@pytest.fixture(scope="module")
+def data():
+    return generate(["creep_power_law"], sampling="5min", seed=11, forces=np.linspace(180.0, 360.0, 3))
+
+
+def _shape_fit(d, start):
+    from rollaway.effects import get_effect
+    from rollaway.identify.shape import flexible_effect
+    return calibrate(d, [flexible_effect(get_effect("lining_creep"), d.time_s)], start=start)
+
+
+def same(a: dict, b: dict) -> bool:
+    return a.keys() == b.keys() and all(np.array_equal(a[k], b[k]) for k in a)
+
+
+def test_fits_on_several_cores_are_the_fits_one_after_another(data, monkeypatch):
+    jobs = [([e], None, dict(max_iterations=6)) for e in ("lining_creep", "cable_relaxation", "friction_temperature")]
+    monkeypatch.setenv("ROLLAWAY_WORKERS", "2")
+    spawned = []
+    real = workers.ProcessPoolExecutor
+    monkeypatch.setattr(workers, "ProcessPoolExecutor", lambda *a, **k: spawned.append(a) or real(*a, **k))
+    pooled = fit_all(data, jobs)
+    assert spawned and spawned[0][0] == 2                       # the pool ran them
+    monkeypatch.setenv("ROLLAWAY_WORKERS", "1")
+    alone = fit_all(data, jobs)
+    for a, b in zip(pooled, alone):
+        assert same(a.values, b.values) and a.bic == b.bic and a.effects == b.effects
+        assert a.data is data and np.array_equal(a.jacobian, b.jacobian)
+    monkeypatch.setenv("ROLLAWAY_WORKERS", "2")          # a shape-free form (a class built at run time) comes back
+    start = alone[0].values
+    back = run_fits(data, [(_shape_fit, (start,), {}), (_shape_fit, (start,), {})])
+    assert back[0].effects == ["lining_creep_shape"] and same(back[0].values, _shape_fit(data, start).values)
+
+
+def test_a_shape_free_effect_pickles_as_its_base_and_knots():
+    from rollaway.effects import get_effect
+    from rollaway.effects.shape_free import spline_effect
+    e = spline_effect(get_effect("cable_relaxation"), [0.0, 600.0, 3600.0])()
+    back = pickle.loads(pickle.dumps(e))
+    assert back.name == "cable_relaxation_shape" and list(back.knots) == [0.0, 600.0, 3600.0]
+
+
+def test_workers_setting_is_validated_and_one_worker_stays_in_process(data, monkeypatch):
+    monkeypatch.setenv("ROLLAWAY_WORKERS", "two")
+    with pytest.raises(UserError, match="ROLLAWAY_WORKERS"):
+        cores()
+    monkeypatch.setenv("ROLLAWAY_WORKERS", "0")
+    with pytest.raises(UserError, match="at least 1"):
+        cores()
+    monkeypatch.setenv("ROLLAWAY_WORKERS", "1")
+    monkeypatch.setattr(workers, "ProcessPoolExecutor", lambda *a, **k: pytest.fail("no pool with one worker"))
+    assert len(fit_all(data, [(["lining_creep"], None, {}), (["cable_relaxation"], None, {})])) == 2
+
+
+def test_a_pool_that_fails_leaves_the_fits_to_this_process(data, monkeypatch):
+    monkeypatch.setenv("ROLLAWAY_WORKERS", "2")
+
+    def broken(*a, **k):
+        raise OSError("no processes here")
+    monkeypatch.setattr(workers, "ProcessPoolExecutor", broken)
+    fits = fit_all(data, [(["lining_creep"], None, {}), (["cable_relaxation"], None, {})])
+    assert [f.effects for f in fits] == [["lining_creep"], ["cable_relaxation"]]
+    monkeypatch.setattr(mp, "current_process", lambda: type("P", (), {"daemon": True})())
+    monkeypatch.setattr(workers, "ProcessPoolExecutor", lambda *a, **k: pytest.fail("a daemon cannot have children"))
+    assert len(fit_all(data, [(["lining_creep"], None, {}), (["cable_relaxation"], None, {})])) == 2
