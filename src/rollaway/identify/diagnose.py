@@ -22,7 +22,7 @@ from __future__ import annotations
 import numpy as np
 
 from rollaway.effects import available_effects, get_effect
-from rollaway.identify.ambiguity import (alternative_words, closest, rivals, set_rivals, tell_apart,
+from rollaway.identify.ambiguity import (MAX_RIVALS, alternative_words, closest, rivals, set_rivals, tell_apart,
                                         weak_alternatives)
 from rollaway.identify.calibrate import FitResult, calibrate, evaluate
 from rollaway.identify.coarse import MAX_WINDOW_S, coarsen
@@ -35,6 +35,7 @@ from rollaway.bench.noise import Noise, noise_estimate, sample_sigma
 from rollaway.identify.detection import detection_limits, limits_words
 from rollaway.identify.diagnose_words import describe_residual, no_candidate_words, noise_words, structure_words
 from rollaway.identify.partner import own_evidence
+from rollaway.identify.shape import form_rivals, other_form_rivals
 from rollaway.identify.selection import (BIC_THRESHOLD, SCREEN_ITERATIONS, Candidate, cv_score, eliminate, exchange,
                                          folds, forward_step, has_per_test, per_test_signature, structure,
                                          weighted_chi2)
@@ -199,7 +200,15 @@ def diagnose(data: Measurements, params=None, effects=None, *, noise_torque_Nm: 
                       + (f"  {', '.join(dropped)} only absorbed part of this form mismatch and is not kept."
                          if dropped else ""))
     refined = recheck(drum, data, refined, [e["effect"] for e in selected]) if selected else refined
+    forms = form_rivals(data, refined, drum.plan) if selected else []      # shape-free: the bands, other forms
     rivalry = _rivals(selected, _same_drum(data, params, base, first_cands), base_cv, validity(full), nq)
+    if len(selected) == 1 and selected[0]["form"] == "exact" and not remaining and len(rivalry) < MAX_RIVALS:
+        own = next((f for f in forms if len(f.effects) == 1), None)
+        named = {e for a in rivalry for e in a["effects"]}
+        for a in other_form_rivals(data, refined, own, [c for c in first_cands if c.effect not in named],
+                                   drum.plan)[:MAX_RIVALS - len(rivalry)]:
+            a["tell_apart"] = tell_apart(refined, a["fit"], validity(full), nq.sigma)
+            rivalry.append(a)
     if len(selected) >= 2 and not remaining:
         rivalry = set_rivals(data, params, names, [e["effect"] for e in selected], refined,
                              max(ess_inflation(refined).values()), SCREEN_ITERATIONS)
@@ -217,7 +226,7 @@ def diagnose(data: Measurements, params=None, effects=None, *, noise_torque_Nm: 
               "partial" if remaining or any(e["form"] != "exact" for e in selected) else False)
     pool = [base] + [c.fit for c in first_cands]
     if data is not full:                                  # the chosen model, refitted on every row
-        _predictive(data, refined, pool, len(selected), drum, misfit, [a["fit"] for a in rivalry + weak])
+        _predictive(data, refined, pool, len(selected), drum, misfit, [a["fit"] for a in rivalry + weak], forms)
         alts, pool = refined.fit_info.get("alternatives", []), []
         refined = calibrate(full, refined.effects, params, start=refined.values)
         refined.fit_info["alternatives"] = alts
@@ -225,7 +234,7 @@ def diagnose(data: Measurements, params=None, effects=None, *, noise_torque_Nm: 
                   f"{MAX_WINDOW_S:g} s); the chosen model was refitted on all {len(full)} rows.")
         data = full
     refined.covariance = predictive_covariance(refined, drum.fixed_priors(), ess_inflation(refined))
-    _predictive(data, refined, pool, len(selected), drum, misfit, [a["fit"] for a in rivalry + weak])
+    _predictive(data, refined, pool, len(selected), drum, misfit, [a["fit"] for a in rivalry + weak], forms)
     alts = refined.fit_info.get("alternatives") or []
     restate(refined, mixture_variances(refined, alts) or covariance_variances(refined))
     drum.update(refined)
@@ -303,19 +312,18 @@ def _partial(data, params, base: FitResult, refined: FitResult, chosen: list[str
 
 
 def _predictive(data, refined: FitResult, pool: list[FitResult], n_effects: int, drum: DrumCalibration,
-                misfit: bool | str = False, keep=()) -> None:
+                misfit: bool | str = False, keep=(), forms=()) -> None:
     """Attach the predictive record (model error, tested range) and the competing effect sets with their
     weights to *refined* (``fit_info``), for the saved model (:mod:`rollaway.uncertainty.bands`).  *misfit*:
     the saved model's form is known to leave structure (``"partial"``: an effect named "partial";
     ``"unexplained"``: structure no catalogue form clears): its model error is widened
     (:func:`rollaway.uncertainty.bands.model_error`).  *keep*: fits the data
-    cannot tell from *refined* (named beside the verdict): always among the alternatives.  A fit competes when
+    cannot tell from *refined* (named beside the verdict): always among the alternatives; *forms*: *refined*'s set
+    with each effect shape-free (:func:`rollaway.identify.shape.form_rivals`), competing too.  A fit competes when
     its BIC is within :data:`rollaway.uncertainty.bands.COMPETING_BIC` of *refined*'s or the held-out prediction
     does not rule it out (BIC alone is overconfident where residuals are autocorrelated); not a fit with per-test
-    values (a zero offset per test): its held-out score refits the held-out test's own values.  *refined*'s effects
-    in their shape-free forms compete as well (:func:`rollaway.identify.shape.form_rivals`)."""
+    values (a zero offset per test): its held-out score refits the held-out test's own values."""
     from rollaway.identify.ambiguity import not_ruled_out
-    from rollaway.identify.shape import form_rivals
     from rollaway.uncertainty.bands import COMPETING_BIC, alternatives, model_error
     from rollaway.model.predictive_record import record
     val = validity(data)
@@ -325,8 +333,7 @@ def _predictive(data, refined: FitResult, pool: list[FitResult], n_effects: int,
     comp = [f for f in pool if f is not refined and f.jacobian is not None and len(f.effects) <= 1
             and not _per_test_effect(f)                 # refits the held-out test's own values: no fair score
             and (f.bic - refined.bic < COMPETING_BIC or not_ruled_out(refined, f))] if n_effects <= 1 else []
-    comp += [f for f in form_rivals(data, refined, drum.plan)     # the chosen physics in the data's own form
-             if not _per_test_effect(f)]
+    comp += [f for f in forms if not _per_test_effect(f) and all(f is not g for g in keep)]   # the data's own form
     mix = alternatives(refined, comp + [f for f in keep if all(f is not g for g in comp)], keep=keep)
     alts = []
     for w, f in mix:

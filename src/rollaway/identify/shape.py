@@ -11,6 +11,7 @@ from __future__ import annotations
 
 import numpy as np
 
+from rollaway.effects import get_effect
 from rollaway.effects.base import Effect
 from rollaway.effects.shape_free import (  # noqa: F401  (read from here too)
     HOOK_COVARIATE, TEMPERATURE_HOOKS, is_shape_free, shape_hook, spline_effect, spline_factor)
@@ -65,6 +66,52 @@ def form_rivals(data, fit, params) -> list:
         if f.jacobian is not None:
             out.append(f)
     return out
+
+
+OTHER_FORM_BIC = 2.0          # "positive" evidence (Kass & Raftery 1995) that another effect's shape fits better
+
+
+def other_form_rivals(data, fit, own_shape, candidates, params) -> list[dict]:
+    """Effects that a one-effect verdict *fit* (its catalogue form explains the data) does not rule out once their
+    form is freed too: a step-1 candidate whose physics the catalogue writes in a form the data do not follow (a
+    friction rising with the square of the temperature, written linear) can lose to another effect in its
+    catalogue form and still be the better explanation.  Each candidate that lowered BIC against the drum and
+    whose shape-free form has another covariate than the verdict's (a function of temperature against one of
+    time: two functions of time are the same shape, a test of physics they are not) is fitted shape-free
+    (:func:`flexible_effect`, brake parameters of *params*) and compared, freedom for freedom, with the verdict's
+    own shape-free form *own_shape*: it is not ruled out when its BIC is lower by :data:`OTHER_FORM_BIC` and it
+    predicts held-out tests at least as well as the verdict's catalogue form (:func:`rollaway.identify.ambiguity.
+    heldout_difference` ≥ 0).  Best first: ``{"kind": "rival", "form": "shape-free", "effects", "delta_bic"
+    (against *fit*), "heldout_elpd", "heldout_se", "why", "fit"}`` (*fit* the shape-free one)."""
+    from rollaway.identify.ambiguity import heldout_difference
+    from rollaway.identify.workers import fit_all
+    found = shape_hook(fit.model.effects[0])
+    if own_shape is None or own_shape.jacobian is None or found is None:
+        return []
+    verdict = fit.effects[0]
+    flex = []
+    for c in candidates:
+        eff = get_effect(c.effect)
+        other = shape_hook(eff)
+        if c.effect != verdict and c.delta_bic < 0 and other is not None and other[1] != found[1]:
+            cls = flexible_effect(eff, covariate_of(fit, other[1]))
+            if cls is not None:
+                flex.append((c.effect, cls))
+    out = []
+    shapes = fit_all(data, [([cls], params, dict(start=fit.values)) for _, cls in flex])
+    for (name, cls), shaped in zip(flex, shapes):
+        if shaped.jacobian is None or shaped.bic > own_shape.bic - OTHER_FORM_BIC:
+            continue
+        elpd, se = heldout_difference(fit, shaped)
+        if elpd < 0.0:
+            continue
+        out.append({"kind": "rival", "form": "shape-free", "effects": [name], "delta_bic": float(shaped.bic - fit.bic),
+                    "heldout_elpd": elpd, "heldout_se": se, "fit": shaped,
+                    "why": (f"{name} in a shape-free form (a spline in {cls.covariate}) fits better than {verdict} in "
+                            f"one (BIC lower by {own_shape.bic - shaped.bic:.1f}) and predicts held-out tests at least "
+                            f"as well as {verdict} (Δ log score {elpd:+.1f} ± {se:.1f}): its catalogue form does not "
+                            f"fit, another form of it would")})
+    return sorted(out, key=lambda a: a["delta_bic"])
 
 
 def covariate_of(fit, name: str) -> np.ndarray:
