@@ -29,21 +29,27 @@ QUESTIONS = {"inside": (270.0, 200.0), "force_low": (135.0, 200.0), "force_high"
              "hotter": (300.0, 280.0), "direction": (270.0, 200.0)}
 
 
-def campaign(i: int, draws: int = 300, sampling: str = "5min") -> list[dict]:
-    """The questions of held-out campaign *i*, each with the truth's least margin and the model's band."""
-    from rollaway.hold import required_torque
-    from rollaway.identify.diagnose import diagnose
-    from rollaway.uncertainty.draws import rollaway_risk
+def campaign_data(i: int, sampling: str = "5min"):
+    """(hidden effect or None, its generator's drum, μ_d, h, one direction?, bench data, rng) of campaign *i*."""
     rng = np.random.default_rng(7700 + i)
     hidden = HIDDEN[i % len(HIDDEN)]
-    effects = [hidden] if hidden else []
     mu, h = rng.uniform(0.3, 0.45), rng.uniform(25.0, 45.0)
     drums = list(OTHER_DRUMS.values())
     drum = drums[rng.integers(len(drums))] if i % 2 else {}
     one = i % 3 == 2
     tested = ("downhill",) if one else ("downhill", "uphill")
-    data = generate(effects, sampling=sampling, seed=7700 + i, mu=mu, h=h, drum=drum, directions=tested,
-                    forces=np.linspace(180.0, 360.0, 3 + i % 2), t0_range=(100.0, 250.0))
+    data = generate([hidden] if hidden else [], sampling=sampling, seed=7700 + i, mu=mu, h=h, drum=drum,
+                    directions=tested, forces=np.linspace(180.0, 360.0, 3 + i % 2), t0_range=(100.0, 250.0))
+    return hidden, drum, mu, h, one, data, rng
+
+
+def campaign(i: int, draws: int = 300, sampling: str = "5min") -> list[dict]:
+    """The questions of held-out campaign *i*, each with the truth's least margin and the model's band."""
+    from rollaway.hold import required_torque
+    from rollaway.identify.diagnose import diagnose
+    from rollaway.uncertainty.draws import rollaway_risk
+    hidden, drum, mu, h, one, data, rng = campaign_data(i, sampling)
+    effects = [hidden] if hidden else []
     model = diagnose(data).model
     rows = []
     for q, (force, t0) in QUESTIONS.items():

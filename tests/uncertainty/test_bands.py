@@ -247,3 +247,16 @@ def test_a_competitor_is_excluded_for_per_test_effects_only_not_for_each_tests_s
     data = generate([], seed=3, forces=np.linspace(180.0, 360.0, 3))
     assert not _per_test_effect(calibrate(data, ["lining_creep"]))
     assert _per_test_effect(calibrate(data, ["torque_zero_offset"]))
+
+
+def test_a_rival_the_data_cannot_tell_from_the_verdict_keeps_its_bic_weight_in_the_bands():
+    """A lining modulus falling with temperature, tested downhill only (campaign 41 of band_questions): friction and
+    modulus have the same BIC (+0.1) and a held-out difference inside the preference margin (−4.0 ± 2.3 over 4
+    tests); the Bayesian bootstrap of those 4 scores gave modulus 5 % of the mixture, its BIC weight is ~½."""
+    from tests.uncertainty.band_questions import campaign_data
+    hidden, *_, data, _ = campaign_data(41)
+    d = diagnose(data)
+    assert hidden == "modulus_linear" and d.verdict == "friction_temperature"
+    assert [a["effects"] for a in d.alternatives] == [["modulus_temperature"]]
+    weights = {m.name: w for w, m in d.model.alternatives}
+    assert weights.get("paper + modulus_temperature", 0.0) >= 0.25, weights

@@ -226,7 +226,8 @@ def diagnose(data: Measurements, params=None, effects=None, *, noise_torque_Nm: 
               "partial" if remaining or any(e["form"] != "exact" for e in selected) else False)
     pool = [base] + [c.fit for c in first_cands]
     if data is not full:                                  # the chosen model, refitted on every row
-        _predictive(data, refined, pool, len(selected), drum, misfit, [a["fit"] for a in rivalry + weak], forms)
+        _predictive(data, refined, pool, len(selected), drum, misfit, [a["fit"] for a in rivalry + weak], forms,
+                    [a["fit"] for a in rivalry if a.get("kind") == "rival"])
         alts, pool = refined.fit_info.get("alternatives", []), []
         refined = calibrate(full, refined.effects, params, start=refined.values)
         refined.fit_info["alternatives"] = alts
@@ -234,7 +235,8 @@ def diagnose(data: Measurements, params=None, effects=None, *, noise_torque_Nm: 
                   f"{MAX_WINDOW_S:g} s); the chosen model was refitted on all {len(full)} rows.")
         data = full
     refined.covariance = predictive_covariance(refined, drum.fixed_priors(), ess_inflation(refined))
-    _predictive(data, refined, pool, len(selected), drum, misfit, [a["fit"] for a in rivalry + weak], forms)
+    _predictive(data, refined, pool, len(selected), drum, misfit, [a["fit"] for a in rivalry + weak], forms,
+                [a["fit"] for a in rivalry if a.get("kind") == "rival"])
     alts = refined.fit_info.get("alternatives") or []
     restate(refined, mixture_variances(refined, alts) or covariance_variances(refined))
     drum.update(refined)
@@ -312,13 +314,14 @@ def _partial(data, params, base: FitResult, refined: FitResult, chosen: list[str
 
 
 def _predictive(data, refined: FitResult, pool: list[FitResult], n_effects: int, drum: DrumCalibration,
-                misfit: bool | str = False, keep=(), forms=()) -> None:
+                misfit: bool | str = False, keep=(), forms=(), ties=()) -> None:
     """Attach the predictive record (model error, tested range) and the competing effect sets with their
     weights to *refined* (``fit_info``), for the saved model (:mod:`rollaway.uncertainty.bands`).  *misfit*:
     the saved model's form is known to leave structure (``"partial"``: an effect named "partial";
     ``"unexplained"``: structure no catalogue form clears): its model error is widened
     (:func:`rollaway.uncertainty.bands.model_error`).  *keep*: fits the data
-    cannot tell from *refined* (named beside the verdict): always among the alternatives; *forms*: *refined*'s set
+    cannot tell from *refined* (named beside the verdict): always among the alternatives, those of them named as
+    rivals (*ties*) with at least their BIC weight (:func:`rollaway.uncertainty.bands.alternatives`); *forms*: *refined*'s set
     with each effect shape-free (:func:`rollaway.identify.shape.form_rivals`), competing too.  A fit competes when
     its BIC is within :data:`rollaway.uncertainty.bands.COMPETING_BIC` of *refined*'s or the held-out prediction
     does not rule it out (BIC alone is overconfident where residuals are autocorrelated); not a fit with per-test
@@ -334,7 +337,7 @@ def _predictive(data, refined: FitResult, pool: list[FitResult], n_effects: int,
             and not _per_test_effect(f)                 # refits the held-out test's own values: no fair score
             and (f.bic - refined.bic < COMPETING_BIC or not_ruled_out(refined, f))] if n_effects <= 1 else []
     comp += [f for f in forms if not _per_test_effect(f) and all(f is not g for g in keep)]   # the data's own form
-    mix = alternatives(refined, comp + [f for f in keep if all(f is not g for g in comp)], keep=keep)
+    mix = alternatives(refined, comp + [f for f in keep if all(f is not g for g in comp)], keep=keep, ties=ties)
     alts = []
     for w, f in mix:
         if f is refined:

@@ -153,11 +153,16 @@ def edge_error(fit, side: str) -> dict | None:
     return {"rel_sd": math.sqrt(max(excess, 0.0)), "distance": distance, "tests": len(s2)}
 
 
-def alternatives(selected, competitors: list, keep=()) -> list[tuple[float, object]]:
+def alternatives(selected, competitors: list, keep=(), ties=()) -> list[tuple[float, object]]:
     """Pseudo-BMA weights of *selected* and its competitors (leave-one-test-out scores), heaviest first.
     *keep*: competitors the data cannot tell from *selected* (named beside a verdict): never dropped — not
     for their size, and not for a light weight (floored at :data:`MIN_WEIGHT`).  *selected* keeps at least
-    :data:`MIN_WEIGHT` too (it is the saved model: the alternatives' weights add up to less than 1)."""
+    :data:`MIN_WEIGHT` too (it is the saved model: the alternatives' weights add up to less than 1).  *ties*:
+    those of *keep* named as rivals (BIC within reach and a held-out difference inside the preference margin):
+    each keeps at least its BIC weight among *selected* and the ties (w ∝ exp(−½·BIC), the BIC approximation
+    to the posterior probability, Kass & Raftery 1995 §4.1) — with a handful of tests a held-out difference
+    inside the margin is noise the Bayesian bootstrap still turns into a light weight, and the sets differ
+    most where the bench did not test (the other direction, another force)."""
     kept = {id(c) for c in keep}
     pool = [selected] + [c for c in competitors if c is not selected and c.jacobian is not None
                          and (sized(c) or id(c) in kept)]
@@ -170,6 +175,12 @@ def alternatives(selected, competitors: list, keep=()) -> list[tuple[float, obje
     z -= z.max(axis=1, keepdims=True)
     w = (np.exp(z) / np.exp(z).sum(axis=1, keepdims=True)).mean(axis=0)
     w = w / w.sum()
+    tied = [i for i, f in enumerate(pool) if i == 0 or any(f is t for t in ties)]
+    if len(tied) > 1:
+        b = np.array([pool[i].bic for i in tied])
+        wb = np.exp(-0.5 * (b - b.min()))
+        w[tied[1:]] = np.maximum(w[tied[1:]], (wb / wb.sum())[1:])
+        w = w / w.sum()
     floor = np.array([i == 0 or id(f) in kept for i, f in enumerate(pool)])   # the selected model keeps a share
     w = np.where(floor, np.maximum(w, MIN_WEIGHT), np.where(w >= MIN_WEIGHT, w, 0.0))
     w = w / w.sum()
