@@ -77,3 +77,15 @@ def test_a_pool_that_fails_leaves_the_fits_to_this_process(data, monkeypatch):
     monkeypatch.setattr(mp, "current_process", lambda: type("P", (), {"daemon": True})())
     monkeypatch.setattr(workers, "ProcessPoolExecutor", lambda *a, **k: pytest.fail("a daemon cannot have children"))
     assert len(fit_all(data, [(["lining_creep"], None, {}), (["cable_relaxation"], None, {})])) == 2
+
+
+def test_outside_the_main_thread_the_fits_stay_in_process(data, monkeypatch):
+    import threading
+    monkeypatch.setenv("ROLLAWAY_WORKERS", "2")
+    monkeypatch.setattr(workers, "ProcessPoolExecutor", lambda *a, **k: pytest.fail("no fork outside the main thread"))
+    out = []
+    t = threading.Thread(target=lambda: out.append(fit_all(data, [(["lining_creep"], None, {}),
+                                                                  (["cable_relaxation"], None, {})])))
+    t.start()
+    t.join()
+    assert [f.effects for f in out[0]] == [["lining_creep"], ["cable_relaxation"]]

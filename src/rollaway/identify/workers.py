@@ -8,7 +8,8 @@ caller's object is put back).
 The results are the same, fit for fit, as one after another: each fit is deterministic and independent.
 
 One after another instead: one core (``ROLLAWAY_WORKERS=1`` or the process's CPU affinity), no ``fork`` start
-method (Windows), inside a daemonic process (a multiprocessing pool's worker cannot have children), fewer than two
+method (Windows), inside a daemonic process (a multiprocessing pool's worker cannot have children), outside the
+main thread (a thread of a threaded scheduler: forking there may copy a lock another thread holds), fewer than two
 fits, or a pool that fails (it cannot start, a worker is killed, a fit cannot be sent back: then the fits are
 run here, which raises any error of their own).
 """
@@ -16,6 +17,7 @@ from __future__ import annotations
 
 import multiprocessing as mp
 import os
+import threading
 from concurrent.futures import ProcessPoolExecutor
 
 from rollaway.errors import UserError
@@ -52,7 +54,8 @@ def run_fits(data, calls: list[tuple]) -> list:
     index is sent) and send the fit back."""
     global _CALLS
     n = min(cores(), len(calls))
-    if n < 2 or "fork" not in mp.get_all_start_methods() or mp.current_process().daemon:
+    if (n < 2 or "fork" not in mp.get_all_start_methods() or mp.current_process().daemon
+            or threading.current_thread() is not threading.main_thread()):
         return [fn(data, *args, **kwargs) for fn, args, kwargs in calls]
     _CALLS = (data, calls)
     try:
