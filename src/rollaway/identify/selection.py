@@ -216,15 +216,14 @@ def exchange(data, params, names, chosen, current, struct, nq, nt, rounds: int =
         held, n_held = _held_plan(params, current)       # trials with the brake parameters held (cheap)
         penalty = n_held * np.log(2 * len(data))
         per_test_ok = per_test_signature(current, nq)
-        for i, old in enumerate(chosen):
-            for new in names:
-                if new in chosen or (has_per_test(new) and not per_test_ok):
-                    continue
-                trial = chosen[:i] + [new] + chosen[i + 1:]
-                fit = calibrate(data, trial, held, start=current.values, statistics=False,
-                                max_iterations=SCREEN_ITERATIONS)
-                if fit.bic + penalty < current.bic - 2.0 and (best is None or fit.bic < best[2].bic):
-                    best = (i, new, fit)
+        swaps_tried = [(i, new) for i in range(len(chosen)) for new in names
+                       if new not in chosen and not (has_per_test(new) and not per_test_ok)]
+        fits = run_fits(data, [(calibrate, (chosen[:i] + [new] + chosen[i + 1:], held),
+                                dict(start=current.values, statistics=False, max_iterations=SCREEN_ITERATIONS))
+                               for i, new in swaps_tried])
+        for (i, new), fit in zip(swaps_tried, fits):
+            if fit.bic + penalty < current.bic - 2.0 and (best is None or fit.bic < best[2].bic):
+                best = (i, new, fit)
         if best is None:
             break
         i, new, _ = best
@@ -243,10 +242,8 @@ def eliminate(data, params, chosen, current, struct, nq, nt):
     residual as clean."""
     removed = []
     while len(chosen) >= 2:
-        trials = []
-        for i in range(len(chosen)):
-            rest = chosen[:i] + chosen[i + 1:]
-            trials.append((calibrate(data, rest, params, start=current.values), i))
+        trials = list(zip(run_fits(data, [(calibrate, (chosen[:i] + chosen[i + 1:], params), dict(start=current.values))
+                                          for i in range(len(chosen))]), range(len(chosen))))
         fit, i = min(trials, key=lambda t: t[0].bic)
         if fit.bic >= current.bic:
             break
