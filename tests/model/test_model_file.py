@@ -116,36 +116,21 @@ def test_calibration_table_is_validated(tmp_path):
             DrumModel(bad)
 
 
-PLUGIN = '''
-from rollaway.effects.base import Effect, EffectParameter
-
-class SlowCreepForFiles(Effect):
-    name = "slow_creep_for_files"
-    summary = "clamp force lost linearly with time"
-    physics = "F <- F (1 - a t / 3600)"
-    signature = "torque falls with time"
-    reference = "test plugin"
-    parameters = (EffectParameter("a", "-", neutral=0.0, lower=0.0, upper=0.5, initial=0.02),)
-
-    def clamp_force(self, state, f, v):
-        return f * (1 - v["a"] * state.time_s / 3600.0)
-'''
-
-
 def test_a_model_with_a_plugin_effect_and_its_shape_free_form_names_the_plugin_and_loads_elsewhere(tmp_path):
     """A model fitted with an effect from a plugin file (diagnose --effect-file) is saved with ``plugin =`` that
     file, relative to the model file, so that it loads in another command; so is its shape-free form."""
     from rollaway.effects import get_effect, load_effect_file
     from rollaway.effects.shape_free import spline_effect
-    plugin = tmp_path / "fx" / "slow.py"
+    from tests.corpus.plugin_cases import plug
+    plugin = tmp_path / "fx" / "humid.py"
     plugin.parent.mkdir()
-    plugin.write_text(PLUGIN, encoding="utf-8")
+    plugin.write_text(plug(**{'name = "humidity"': 'name = "humidity_for_files"'}), encoding="utf-8")
     load_effect_file(plugin)
-    shape = spline_effect(get_effect("slow_creep_for_files"), [0.0, 600.0, 3600.0])
-    for effects, values in ((["slow_creep_for_files"], {"slow_creep_for_files.a": 0.1}),
-                            ([shape], {"slow_creep_for_files_shape.c0": -0.02, "slow_creep_for_files_shape.c1": -0.08})):
+    shape = spline_effect(get_effect("humidity_for_files"), [20.0, 100.0, 300.0])
+    for effects, values in ((["humidity_for_files"], {"humidity_for_files.a": 0.1}),
+                            ([shape], {"humidity_for_files_shape.c0": 0.02, "humidity_for_files_shape.c1": -0.08})):
         m = DrumModel("paper", effects, values)
         path = save_model(m, tmp_path / "models" / "m.toml")
-        assert 'plugin = "../fx/slow.py"' in path.read_text(encoding="utf-8")
+        assert 'plugin = "../fx/humid.py"' in path.read_text(encoding="utf-8")
         back = load_model(path)
         assert np.array_equal(back.evaluate(T, 300.0).torque_Nm, m.evaluate(T, 300.0).torque_Nm)
