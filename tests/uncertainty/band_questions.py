@@ -43,14 +43,37 @@ def campaign_data(i: int, sampling: str = "5min"):
     return hidden, drum, mu, h, one, data, rng
 
 
-def campaign(i: int, draws: int = 300, sampling: str = "5min") -> list[dict]:
-    """The questions of held-out campaign *i*, each with the truth's least margin and the model's band."""
-    from rollaway.hold import required_torque
+def two_effect_data(i: int):
+    """(hidden effects, drum, μ_d, h, one direction?, bench data, rng) of two-effect campaign *i*: a random pair of
+    catalogue and other forms, 5-min and 1-min sampling alternating."""
+    rng = np.random.default_rng(6600 + i)
+    effects = list(rng.choice(HIDDEN[1:], 2, replace=False))
+    mu, h = rng.uniform(0.3, 0.45), rng.uniform(25.0, 45.0)
+    drums = list(OTHER_DRUMS.values())
+    drum = drums[rng.integers(len(drums))] if i % 2 else {}
+    one = i % 3 == 2
+    data = generate(effects, sampling=("5min", "1min")[i % 2], seed=6600 + i, mu=mu, h=h, drum=drum,
+                    directions=("downhill",) if one else ("downhill", "uphill"),
+                    forces=np.linspace(180.0, 360.0, 3 + i % 2), t0_range=(100.0, 250.0))
+    return effects, drum, mu, h, one, data, rng
+
+
+def campaign(i: int, draws: int = 300, sampling: str = "5min", two: bool = False) -> list[dict]:
+    """The questions of held-out campaign *i* (*two*: of :func:`two_effect_data`), each with the truth's least
+    margin and the model's band."""
     from rollaway.identify.diagnose import diagnose
+    if two:
+        effects, drum, mu, h, one, data, rng = two_effect_data(i)
+    else:
+        hidden, drum, mu, h, one, data, rng = campaign_data(i, sampling)
+        effects = [hidden] if hidden else []
+    return answers(diagnose(data).model, i, effects, drum, mu, h, one, rng, draws)
+
+
+def answers(model, i: int, effects: list, drum: dict, mu: float, h: float, one: bool, rng, draws: int = 300):
+    """Each question's truth (its least margin m* on a grade drawn near 1) and *model*'s band."""
+    from rollaway.hold import required_torque
     from rollaway.uncertainty.draws import rollaway_risk
-    hidden, drum, mu, h, one, data, rng = campaign_data(i, sampling)
-    effects = [hidden] if hidden else []
-    model = diagnose(data).model
     rows = []
     for q, (force, t0) in QUESTIONS.items():
         if (q == "direction") != one:
@@ -70,8 +93,8 @@ def campaign(i: int, draws: int = 300, sampling: str = "5min") -> list[dict]:
         risk = rollaway_risk(model, hand_force_N=force, grade_pct=grade, direction=direction, occupants=1,
                              duration_s=3600.0, initial_temp_C=t0, draws=draws, seed=i)
         p = risk.brake_margin_percentiles          # the truth is the brake's (the tyre limit is not hidden)
-        rows.append({"campaign": i, "hidden": hidden, "question": q, "m_star": m_star, "p5": p["p5"],
-                     "p95": p["p95"], "half_width": 0.5 * (p["p95"] - p["p5"]),
+        rows.append({"campaign": i, "hidden": "+".join(effects) or None, "question": q, "m_star": m_star,
+                     "p5": p["p5"], "p95": p["p95"], "half_width": 0.5 * (p["p95"] - p["p5"]),
                      "probability": risk.rollaway_probability, "covered": p["p5"] <= m_star <= p["p95"]})
     return rows
 
@@ -97,8 +120,10 @@ def main(argv=None):
     ap = argparse.ArgumentParser(description=__doc__.splitlines()[0])
     ap.add_argument("--campaigns", type=int, default=30)
     ap.add_argument("--sampling", default="5min")
+    ap.add_argument("--start", type=int, default=0)
+    ap.add_argument("--two", action="store_true", help="two hidden effects a campaign (5-min and 1-min alternating)")
     a = ap.parse_args(argv)
-    rows = [r for i in range(a.campaigns) for r in campaign(i, sampling=a.sampling)]
+    rows = [r for i in range(a.start, a.start + a.campaigns) for r in campaign(i, sampling=a.sampling, two=a.two)]
     for r in rows:
         if not r["covered"]:
             print(f"  miss {r['campaign']} {r['hidden']} {r['question']}: m* {r['m_star']:.3f} band "

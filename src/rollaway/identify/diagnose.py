@@ -227,7 +227,7 @@ def diagnose(data: Measurements, params=None, effects=None, *, noise_torque_Nm: 
     pool = [base] + [c.fit for c in first_cands]
     if data is not full:                                  # the chosen model, refitted on every row
         _predictive(data, refined, pool, len(selected), drum, misfit, [a["fit"] for a in rivalry + weak], forms,
-                    [a["fit"] for a in rivalry if a.get("kind") == "rival"])
+                    [a["fit"] for a in rivalry if a.get("kind") == "rival"], (nq, nt))
         alts, pool = refined.fit_info.get("alternatives", []), []
         refined = calibrate(full, refined.effects, params, start=refined.values)
         refined.fit_info["alternatives"] = alts
@@ -236,7 +236,7 @@ def diagnose(data: Measurements, params=None, effects=None, *, noise_torque_Nm: 
         data = full
     refined.covariance = predictive_covariance(refined, drum.fixed_priors(), ess_inflation(refined))
     _predictive(data, refined, pool, len(selected), drum, misfit, [a["fit"] for a in rivalry + weak], forms,
-                [a["fit"] for a in rivalry if a.get("kind") == "rival"])
+                [a["fit"] for a in rivalry if a.get("kind") == "rival"], (nq, nt))
     alts = refined.fit_info.get("alternatives") or []
     restate(refined, mixture_variances(refined, alts) or covariance_variances(refined))
     drum.update(refined)
@@ -314,7 +314,7 @@ def _partial(data, params, base: FitResult, refined: FitResult, chosen: list[str
 
 
 def _predictive(data, refined: FitResult, pool: list[FitResult], n_effects: int, drum: DrumCalibration,
-                misfit: bool | str = False, keep=(), forms=(), ties=()) -> None:
+                misfit: bool | str = False, keep=(), forms=(), ties=(), noise=None) -> None:
     """Attach the predictive record (model error, tested range) and the competing effect sets with their
     weights to *refined* (``fit_info``), for the saved model (:mod:`rollaway.uncertainty.bands`).  *misfit*:
     the saved model's form is known to leave structure (``"partial"``: an effect named "partial";
@@ -325,7 +325,10 @@ def _predictive(data, refined: FitResult, pool: list[FitResult], n_effects: int,
     with each effect shape-free (:func:`rollaway.identify.shape.form_rivals`), competing too.  A fit competes when
     its BIC is within :data:`rollaway.uncertainty.bands.COMPETING_BIC` of *refined*'s or the held-out prediction
     does not rule it out (BIC alone is overconfident where residuals are autocorrelated); not a fit with per-test
-    values (a zero offset per test): its held-out score refits the held-out test's own values."""
+    values (a zero offset per test): its held-out score refits the held-out test's own values.  Each alternative
+    carries its own model error: widened as "partial" when its residual is structured (*noise*: the channels'
+    :class:`~rollaway.bench.noise.Noise`, for the test), and never below *refined*'s when *misfit* is set — a form
+    that clears the structure the verdict leaves is one guess at an effect the catalogue lacks, not a known form."""
     from rollaway.identify.ambiguity import not_ruled_out
     from rollaway.uncertainty.bands import COMPETING_BIC, alternatives, model_error
     from rollaway.model.predictive_record import record
@@ -343,7 +346,11 @@ def _predictive(data, refined: FitResult, pool: list[FitResult], n_effects: int,
         if f is refined:
             continue
         f.covariance = predictive_covariance(f, drum.fixed_priors(), ess_inflation(f))
-        f.fit_info["predictive"] = record(model_error(f, misfit), val)
+        own = misfit if noise is None else (misfit or "partial") if structure(f, *noise)["structured"] else False
+        err = model_error(f, own)
+        if misfit:         # the verdict leaves structure: no set's form is known right, none errs less than it
+            err["rel_sd"] = max(err["rel_sd"], refined.fit_info["predictive"]["model_error_rel_sd"])
+        f.fit_info["predictive"] = record(err, val)
         f.fit_info["calibration"] = drum.record()
         alts.append((w, f))
     refined.fit_info["alternatives"] = alts

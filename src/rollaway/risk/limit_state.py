@@ -147,7 +147,7 @@ def model_draws(population, n: int, rng: np.random.Generator) -> dict | None:
     widened for questions beyond the tested range at the population's median values
     (:func:`rollaway.uncertainty.predictive.extrapolation`).
     """
-    from rollaway.uncertainty.draws import draw_values
+    from rollaway.uncertainty.draws import draw_values, own_record
     from rollaway.uncertainty.predictive import extrapolation, model_error_draws
 
     model = population.model
@@ -180,7 +180,9 @@ def model_draws(population, n: int, rng: np.random.Generator) -> dict | None:
     pop = population
     factor, _ = extrapolation(pred, hand_force_N=pop.fixed("hand_force_N"), direction=pop.directions[0],
                               initial_temp_C=pop.fixed("initial_drum_temp_C"), duration_s=pop.fixed("duration_s"))
-    eps = model_error_draws(pred, n, factor, rng)
+    eps = np.empty(n)
+    for k, (_, m) in enumerate(parts):     # each effect set errs by its own held-out record
+        eps[owner == k] = model_error_draws(own_record(pred, m), int(np.sum(owner == k)), factor, rng)
     return {"groups": groups, "effects": effects, "eps": eps}
 
 

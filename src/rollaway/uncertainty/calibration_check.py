@@ -39,7 +39,7 @@ def _grade_for_margin(model, force_N: float, target: float = 1.0) -> float:
 
 def check_calibration(diag, n: int, *, draws: int = 300, seed: int = 0) -> dict:
     """Coverage of the 5–95 % least-margin band over *n* synthetic campaigns of the user's design."""
-    from rollaway.uncertainty.draws import draw_values, rollaway_risk
+    from rollaway.uncertainty.draws import draw_values, own_record, rollaway_risk
     from rollaway.uncertainty.predictive import model_error_draws
 
     if not (isinstance(n, (int, np.integer)) and 1 <= n <= 1000):
@@ -53,9 +53,10 @@ def check_calibration(diag, n: int, *, draws: int = 300, seed: int = 0) -> dict:
     for k in range(n):
         parts = [(1.0 - sum(w for w, _ in model.alternatives), model)] + list(model.alternatives)
         truth = parts[rng.choice(len(parts), p=np.array([w for w, _ in parts]))][1]
+        own = own_record(model.predictive, truth)
         if truth.covariance is not None:
             truth = truth.with_draw({a: float(b[0]) for a, b in draw_values(truth, 1, int(rng.integers(2**31))).items()})
-        eps = float(model_error_draws(model.predictive, 1, 1.0, rng)[0])
+        eps = float(model_error_draws(own, 1, 1.0, rng)[0])
         series = truth.evaluate(data.time_s, data.hand_force_N, data.sign, initial_temp_C=data.initial_temp_C,
                                 ambient_C=data.ambient_C)
         donors = rng.integers(data.n_tests, size=data.n_tests)       # block bootstrap of whole-test residuals

@@ -135,6 +135,13 @@ def zero_torque_force(model: DrumModel) -> float | None:
     return -p.u6_offset_m / p.u6_slope_m_per_N if p.u6_slope_m_per_N > 0 else None
 
 
+def own_record(pred: dict, part: DrumModel) -> dict:
+    """The predictive record whose model error a part of the mixture draws: *part*'s own (an alternative effect set
+    carries its own held-out error, :func:`rollaway.uncertainty.bands.model_error`), else the saved model's *pred*."""
+    own = part.predictive
+    return own if own is not pred and "model_error_rel_sd" in own else pred
+
+
 def _half_width(x: np.ndarray) -> float:
     return 0.5 * float(np.percentile(x, 95) - np.percentile(x, 5)) if x.size else 0.0
 
@@ -145,8 +152,9 @@ def rollaway_risk(model: DrumModel, *, hand_force_N: float, grade_pct: float, di
     """Probability of a roll-away over [0, duration_s] and percentiles, from *draws* predictive draws.
 
     Each draw is one model (the calibrated one, or a competing effect set by its weight), one
-    parameter vector from that model's covariance and one model error ε (the torque times 1 + ε,
-    widened outside the tested range; :mod:`rollaway.uncertainty.predictive`).  The band's parts are reported
+    parameter vector from that model's covariance and one model error ε from that model's own held-out
+    record (:func:`own_record`; the torque times 1 + ε, widened outside the tested range;
+    :mod:`rollaway.uncertainty.predictive`).  The band's parts are reported
     as shares of its variance: parameters, choice of effects, model error.
     """
     from rollaway.hold import _effective, required_torque, tyre_adhesion_margin
@@ -166,12 +174,16 @@ def rollaway_risk(model: DrumModel, *, hand_force_N: float, grade_pct: float, di
                                   duration_s=float(duration_s), zero_torque_force_N=f0)
     edge = edge_sd(pred, float(hand_force_N), f0)
     rng = np.random.default_rng(seed)
-    eps = model_error_draws(pred, draws, factor, rng, edge)
     parts = [(1.0 - sum(w for w, _ in model.alternatives), model)] + list(model.alternatives)
     counts = np.floor(np.array([w for w, _ in parts]) * draws).astype(int)
     counts[0] += draws - counts.sum()
-    brake = np.empty(draws)
     owner = np.repeat(np.arange(len(parts)), counts)
+    eps = np.empty(draws)
+    for k, (_, m) in enumerate(parts):       # each effect set errs by its own held-out record
+        own = own_record(pred, m)
+        eps[owner == k] = model_error_draws(own, int(counts[k]), factor, rng,
+                                            edge if own is pred else edge_sd(own, float(hand_force_N), f0))
+    brake = np.empty(draws)
     t_slip = np.full(draws, np.nan)
     vals0 = {}
     for k, ((_, m), c) in enumerate(zip(parts, counts)):
@@ -234,7 +246,7 @@ def least_force_band(model: DrumModel, grades_pct, direction: str, occupants: in
         if c == 0:
             continue
         vals = draw_values(m, int(c), None if seed is None else seed + k) if m.covariance is not None else {}
-        eps = model_error_draws(model.predictive, int(c), factor, rng)
+        eps = model_error_draws(own_record(model.predictive, m), int(c), factor, rng)
         g, sign = _effective(grades, direction)
         t_req = np.asarray(required_torque(m.params, g, occupants), float)
         rep = lambda a: np.repeat(np.asarray(a, float)[:, None], grades.size, axis=1).ravel()  # noqa: E731
