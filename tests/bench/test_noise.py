@@ -17,3 +17,24 @@ def test_a_long_log_gives_a_finite_noise_estimate():
     d.time_s = d.time_s * 1000.0                      # the same log, its time read as if in ms
     n = noise_estimate(d, d.torque_Nm, 1000.0, relative=True)
     assert n is not None and np.isfinite(n.sigma)
+
+
+def test_a_dense_log_is_estimated_on_evenly_spread_windows_and_finds_its_noise(monkeypatch):
+    import rollaway.bench.noise as noise
+    from rollaway.bench.measurements import Measurements
+    from rollaway.bench.noise import MAX_WINDOWS
+    rng = np.random.default_rng(3)
+    n = 4 * MAX_WINDOWS                                   # one test at 100 Hz, heavy-tailed noise of known σ
+    t = np.arange(n) * 0.01
+    torque = 800.0 - 0.02 * t + 8.0 * rng.standard_t(4, n) / np.sqrt(2.0)
+    d = Measurements(np.full(n, "D300"), np.full(n, "downhill"), np.full(n, 300.0), t,
+                     180.0 - 0.01 * t + 1.5 * rng.standard_normal(n), torque)
+    e, level, w, c = pseudo_residuals(d.time_s, d.torque_Nm, d.test_index, 1000.0, 1, max_windows=MAX_WINDOWS)
+    assert len(e) <= MAX_WINDOWS and np.all(np.diff(w[:, 0]) >= w.shape[1])      # spread, not overlapping
+    assert w[-1, 0] > 0.9 * n                                                      # over the whole log
+    nt = noise_estimate(d, d.drum_temp_C, 1000.0)
+    assert abs(nt.sigma / 1.5 - 1.0) < 0.03 and nt.dof <= 1.5 * MAX_WINDOWS
+    nq = noise_estimate(d, d.torque_Nm, 1000.0, relative=True)
+    monkeypatch.setattr(noise, "MAX_WINDOWS", None)                   # every window: the same noise, within 3 %
+    every = noise_estimate(d, d.torque_Nm, 1000.0, relative=True)
+    assert abs(nq.at(800.0) / every.at(800.0) - 1.0) < 0.03 and abs(nq.mean_factor / every.mean_factor - 1) < 0.03

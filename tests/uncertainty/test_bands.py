@@ -135,6 +135,27 @@ def test_below_the_tested_forces_the_distance_follows_the_torque_level():
     assert extrapolation(pred, hand_force_N=30.0, zero_torque_force_N=40.0, **base)[0] <= 11.0
 
 
+def test_the_torque_level_below_the_tested_forces_counts_the_thermal_terms_and_effects():
+    """After an hour's cooling from 200 °C the clamp force the drum's contraction takes leaves far less torque at
+    135 N than eq. (24)'s u₆ alone says: the distance follows the model's own least torque, and a question where that
+    torque nearly vanishes gets the band it needs (the generator's drum: two cable relaxations, one exponential and
+    one logarithmic, that one catalogue form takes; at 135 N the truth holds 0.7 % of grade)."""
+    from rollaway.uncertainty.draws import torque_level_ratio, zero_torque_force
+    from tests.uncertainty.band_questions import GRID as HOUR, two_effect_data
+    effects, drum, mu, h, one, data, _ = two_effect_data(346)
+    model = diagnose(data).model
+    tested = model.predictive["tested_hand_force_N"]
+    f0 = zero_torque_force(model)
+    by_u6 = (tested[0] - f0) / (135.0 - f0)
+    level = torque_level_ratio(model, 135.0, tested, -1.0, 200.0, 3600.0)
+    assert level > 2.0 * by_u6 and torque_level_ratio(model, 200.0, tested, -1.0, 200.0, 3600.0) is None
+    truth_torque = np.min(true_torque(135.0, HOUR, "uphill", drum=drum, mu=mu, h=h, t0=200.0, effects=effects))
+    grade = brentq(lambda g: 2 * truth_torque / float(required_torque(model.params, g, 1)) - 1.0, 0.05, 80.0)
+    band = rollaway_risk(model, hand_force_N=135.0, grade_pct=grade, direction="uphill", occupants=1,
+                         duration_s=3600.0, initial_temp_C=200.0, draws=400, seed=3).brake_margin_percentiles
+    assert band["p5"] <= 1.0 <= band["p95"], band
+
+
 def test_saved_model_keeps_the_predictive_record_and_bad_tables_are_one_line_errors(tmp_path):
     from rollaway.model.drum_model import DrumModel
     d = diagnose(generate(["creep_exponential"], seed=920))

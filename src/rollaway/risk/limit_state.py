@@ -147,7 +147,8 @@ def model_draws(population, n: int, rng: np.random.Generator) -> dict | None:
     widened for questions beyond the tested range at the population's median values
     (:func:`rollaway.uncertainty.predictive.extrapolation`).
     """
-    from rollaway.uncertainty.draws import draw_values, own_record
+    from rollaway.uncertainty.draws import draw_values, own_record, torque_level_ratio, zero_torque_force
+    from rollaway.physics.drum import direction_sign
     from rollaway.uncertainty.predictive import extrapolation, model_error_draws
 
     model = population.model
@@ -178,8 +179,11 @@ def model_draws(population, n: int, rng: np.random.Generator) -> dict | None:
             if m.covariance is None or name not in m.covariance.names:
                 full[owner == k] = v
     pop = population
-    factor, _ = extrapolation(pred, hand_force_N=pop.fixed("hand_force_N"), direction=pop.directions[0],
-                              initial_temp_C=pop.fixed("initial_drum_temp_C"), duration_s=pop.fixed("duration_s"))
+    force, t0, hold = pop.fixed("hand_force_N"), pop.fixed("initial_drum_temp_C"), pop.fixed("duration_s")
+    level = torque_level_ratio(model, force, pred.get("tested_hand_force_N"),
+                               float(direction_sign(pop.directions[0])), t0, hold)
+    factor, _ = extrapolation(pred, hand_force_N=force, direction=pop.directions[0], initial_temp_C=t0,
+                              duration_s=hold, zero_torque_force_N=zero_torque_force(model), level_ratio=level)
     eps = np.empty(n)
     for k, (_, m) in enumerate(parts):     # each effect set errs by its own held-out record
         eps[owner == k] = model_error_draws(own_record(pred, m), int(np.sum(owner == k)), factor, rng)

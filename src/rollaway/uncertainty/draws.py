@@ -135,6 +135,23 @@ def zero_torque_force(model: DrumModel) -> float | None:
     return -p.u6_offset_m / p.u6_slope_m_per_N if p.u6_slope_m_per_N > 0 else None
 
 
+def torque_level_ratio(model: DrumModel, hand_force_N: float, tested_N, sign: float, initial_temp_C,
+                       duration_s: float) -> float | None:
+    """The calibrated model's least torque over *duration_s* at the lowest tested hand force over that at
+    *hand_force_N* (same direction *sign* and start temperature): how far the torque level falls below the tested
+    forces (:func:`rollaway.uncertainty.predictive.force_distance`).  None above the lowest tested force or without a
+    tested range; inf where the model gives no torque at *hand_force_N*."""
+    from rollaway.hold.numeric import MarginFunction, least_margin
+    if tested_N is None or hand_force_N >= float(tested_N[0]):
+        return None
+    fn = MarginFunction(model, np.array([float(hand_force_N), float(tested_N[0])]), float(sign), 1.0, None, None,
+                        initial_temp_C)
+    at_f, at_lo = (float(x) for x in least_margin(fn, duration_s))
+    if not (np.isfinite(at_lo) and at_lo > 0.0):
+        return None
+    return at_lo / at_f if at_f > 0.0 else float("inf")
+
+
 def own_record(pred: dict, part: DrumModel) -> dict:
     """The predictive record whose model error a part of the mixture draws: *part*'s own (an alternative effect set
     carries its own held-out error, :func:`rollaway.uncertainty.bands.model_error`), else the saved model's *pred*."""
@@ -170,9 +187,11 @@ def rollaway_risk(model: DrumModel, *, hand_force_N: float, grade_pct: float, di
     t_req = float(required_torque(model.params, g, occupants))
     t0 = model.params.initial_drum_temp_C if initial_temp_C is None else float(initial_temp_C)
     f0 = zero_torque_force(model)
+    level = torque_level_ratio(model, float(hand_force_N), pred.get("tested_hand_force_N"), sign, t0,
+                               float(duration_s))
     factor, flags = extrapolation(pred, hand_force_N=float(hand_force_N), direction=direction, initial_temp_C=t0,
-                                  duration_s=float(duration_s), zero_torque_force_N=f0)
-    edge = edge_sd(pred, float(hand_force_N), f0)
+                                  duration_s=float(duration_s), zero_torque_force_N=f0, level_ratio=level)
+    edge = edge_sd(pred, float(hand_force_N), f0, level)
     rng = np.random.default_rng(seed)
     parts = [(1.0 - sum(w for w, _ in model.alternatives), model)] + list(model.alternatives)
     counts = np.floor(np.array([w for w, _ in parts]) * draws).astype(int)
@@ -182,7 +201,7 @@ def rollaway_risk(model: DrumModel, *, hand_force_N: float, grade_pct: float, di
     for k, (_, m) in enumerate(parts):       # each effect set errs by its own held-out record
         own = own_record(pred, m)
         eps[owner == k] = model_error_draws(own, int(counts[k]), factor, rng,
-                                            edge if own is pred else edge_sd(own, float(hand_force_N), f0))
+                                            edge if own is pred else edge_sd(own, float(hand_force_N), f0, level))
     brake = np.empty(draws)
     t_slip = np.full(draws, np.nan)
     vals0 = {}

@@ -18,33 +18,39 @@ MAX_LEVEL_DISTANCE = 10.0    # a hand force at or below the one where the torque
 TOLERANCE = 0.02             # within 2 % of the span of a tested edge counts as tested
 
 
-def force_distance(tested_N, hand_force_N: float, zero_torque_force_N: float | None = None) -> float:
+def force_distance(tested_N, hand_force_N: float, zero_torque_force_N: float | None = None,
+                   level_ratio: float | None = None) -> float:
     """How far *hand_force_N* lies outside the tested hand forces *tested_N* = [lowest, highest], relative to their
     span (at least :data:`SPAN_FLOOR`); 0 within :data:`TOLERANCE` of the span.  Below the tested forces the torque
-    falls towards zero at *zero_torque_force_N* (eq. 24: u₆ = 0), and a relative error grows as the torque level
-    falls: there the distance is at least the torque level's ratio less one, (F_lo − F₀)/(F − F₀) − 1 (capped at
-    :data:`MAX_LEVEL_DISTANCE`)."""
+    falls towards zero, and a relative error grows as the torque level falls: there the distance is at least the
+    torque level's ratio less one (capped at :data:`MAX_LEVEL_DISTANCE`) — the ratio (F_lo − F₀)/(F − F₀) of the
+    clamp displacements, F₀ = *zero_torque_force_N* (eq. 24: u₆ = 0), or *level_ratio*, the model's own least torque
+    at F_lo over that at F under the question's conditions (:func:`rollaway.uncertainty.draws.torque_level_ratio`:
+    the thermal terms and the effects count too), whichever is larger."""
     lo, hi = tested_N
     span = max(hi - lo, SPAN_FLOOR["hand_force_N"])
     dist = max(lo - hand_force_N, hand_force_N - hi, 0.0)
     if dist <= TOLERANCE * span:
         return 0.0
     rel = dist / span
-    if hand_force_N < lo and zero_torque_force_N is not None and lo > zero_torque_force_N:
-        level = (lo - zero_torque_force_N) / max(hand_force_N - zero_torque_force_N, 1e-9)
-        rel = max(rel, min(level - 1.0, MAX_LEVEL_DISTANCE))
+    if hand_force_N < lo:
+        levels = [1.0 if level_ratio is None or np.isnan(level_ratio) else level_ratio]   # inf: no torque at F
+        if zero_torque_force_N is not None and lo > zero_torque_force_N:
+            levels.append((lo - zero_torque_force_N) / max(hand_force_N - zero_torque_force_N, 1e-9))
+        rel = max(rel, min(max(levels) - 1.0, MAX_LEVEL_DISTANCE))
     return rel
 
 
 def extrapolation(pred: dict, *, hand_force_N: float, direction: str, initial_temp_C: float,
-                  duration_s: float, zero_torque_force_N: float | None = None) -> tuple[float, list[str]]:
+                  duration_s: float, zero_torque_force_N: float | None = None,
+                  level_ratio: float | None = None) -> tuple[float, list[str]]:
     """(factor ≥ 1 on the model error, flags) for a road question against the tested range.
 
     Each distance counts relative to the tested span; the hand force's by :func:`force_distance`."""
     factor, flags = 1.0, []
     rng = pred.get("tested_hand_force_N")
     if rng is not None:
-        rel = force_distance(rng, hand_force_N, zero_torque_force_N)
+        rel = force_distance(rng, hand_force_N, zero_torque_force_N, level_ratio)
         if rel > 0.0:
             flags.append(f"hand force {hand_force_N:g} N is outside the tested {rng[0]:g}–{rng[1]:g} N")
             factor += rel
@@ -67,14 +73,15 @@ def extrapolation(pred: dict, *, hand_force_N: float, direction: str, initial_te
     return factor, flags
 
 
-def edge_sd(pred: dict, hand_force_N: float, zero_torque_force_N: float | None = None) -> float:
+def edge_sd(pred: dict, hand_force_N: float, zero_torque_force_N: float | None = None,
+            level_ratio: float | None = None) -> float:
     """The relative torque error the bench itself showed when it extrapolated in hand force (the record's
     ``model_error_edge_low``/``_high`` = [rel_sd, distance]: the edge force predicted from the others), scaled
     linearly to the question's distance beyond that edge (:func:`force_distance`); 0 inside the tested forces."""
     rng = pred.get("tested_hand_force_N")
     if rng is None:
         return 0.0
-    dist = force_distance(rng, hand_force_N, zero_torque_force_N)
+    dist = force_distance(rng, hand_force_N, zero_torque_force_N, level_ratio)
     edge = pred.get("model_error_edge_low" if hand_force_N < rng[0] else "model_error_edge_high")
     if dist <= 0.0 or not edge or edge[1] <= 0.0:
         return 0.0
