@@ -103,3 +103,46 @@ def test_subset_keeps_counts_and_the_reduction():
     part = red.subset(red.test_index == 1)
     assert part.reduction is red.reduction and np.array_equal(part.count, red.count[red.test_index == 1])
     assert part.test_info()[0]["samples"] == 6001 and len(part) < 300
+
+
+def _with(data, rows, value, column="drum_temp_C"):
+    out = data.subset(np.ones(len(data), bool))
+    x = getattr(out, column).copy()
+    x[rows] = value
+    setattr(out, column, x)
+    return out
+
+
+def test_an_isolated_sample_out_of_range_in_a_dense_log_is_a_spike_dropped_with_a_note(tmp_path):
+    """A thermocouple dropout of one sample in a 10 Hz log: dropped, said, and the reduction the clean log's."""
+    from rollaway.bench.measurements import load_measurements
+    clean = _log((), duration_s=1200.0)                     # 48 000 rows
+    spiked = _with(clean, [20_000], -270.0)
+    path = tmp_path / "spiked.csv"
+    spiked.to_csv(path)
+    red = load_measurements(str(path), window_s=None)
+    assert red.reduction.reduced and red.reduction.rows_kept == len(clean) - 1
+    assert any("1 isolated sample outside the physical range dropped" in n and "line 20002" in n
+               and "drum_temp_C" in n for n in red.notes), red.notes
+    ref = reduce_measurements(clean)
+    assert len(red) == len(ref) and np.max(np.abs(red.drum_temp_C - ref.drum_temp_C)) < 0.05
+
+
+@pytest.mark.parametrize("rows", [[20_000, 20_001, 20_002], [0], list(range(100, 48_000, 400))])
+def test_out_of_range_values_that_are_no_isolated_spike_stay_an_error(tmp_path, rows):
+    """A run of samples, the first row, or many scattered ones: a unit or wiring fault, named with its line."""
+    from rollaway.bench.measurements import load_measurements
+    from rollaway.errors import UserError
+    path = tmp_path / "bad.csv"
+    _with(_log((), duration_s=1200.0), rows, -270.0).to_csv(path)
+    with pytest.raises(UserError, match=rf"line {rows[0] + 2}, column 'drum_temp_C'.*outside \[-60, 1000\]"):
+        load_measurements(str(path), window_s=None)
+
+
+def test_one_value_out_of_range_in_a_short_log_is_still_an_error(tmp_path):
+    from rollaway.bench.measurements import load_measurements
+    from rollaway.errors import UserError
+    path = tmp_path / "short.csv"
+    _with(synth([], seed=2, dt_s=300.0, duration_s=3600.0), [5], 5000.0).to_csv(path)
+    with pytest.raises(UserError, match=r"line 7, column 'drum_temp_C': 5000 °C is outside"):
+        load_measurements(str(path))

@@ -4,6 +4,10 @@ ranges (a time far out of range named as the unit it looks like), every row a te
 :func:`cell_problems` lists them for :class:`rollaway.bench.reduction.Reducer`, which also checks each test
 as a whole; :func:`line_of` orders problems by the line they name, so that whichever check found a problem,
 the first listed is the first in the file.
+
+:func:`spikes` picks out the isolated samples of a dense log whose measured value lies outside its physical range
+(a thermocouple dropout, a transducer glitch, a heavy noise tail at 100 Hz): there one bad sample among a million is
+a spike, not a wrong unit, and the reducer drops it and says so.
 """
 from __future__ import annotations
 
@@ -11,6 +15,7 @@ import re
 
 import numpy as np
 
+from rollaway.bench.batch import Batch
 from rollaway.bench.dataset import LIMITS
 from rollaway.bench.time_axis import epoch_message, long_test_message
 from rollaway.errors import suggest
@@ -39,6 +44,44 @@ def cell_problems(b) -> list[str]:
         i = int(np.flatnonzero(dcodes < 0)[0])
         problems.append(f"{b.at(i)}, column {b.column('direction')}: empty; give 'downhill' or 'uphill'")
     return problems
+
+
+SPIKE_MIN_ROWS = 10_000      # [assumed] a batch this long is a dense log, where one sample out of range is a spike
+SPIKE_SHARE = 1e-4           # [assumed] at most this share of a batch's rows (more: a unit or a wiring fault)
+MEASURED = ("drum_temp_C", "torque_Nm", "ambient_C")
+
+
+def spikes(b) -> np.ndarray:
+    """Rows of batch *b* to drop as spikes (bool): in a batch of ≥ :data:`SPIKE_MIN_ROWS` rows, a measured value
+    (drum temperature, torque, ambient) finite but outside its physical range, the rows before and after it in the
+    same test in range, and no more than :data:`SPIKE_SHARE` of the rows such; otherwise none (the range check
+    names the first such cell)."""
+    n = len(b)
+    drop = np.zeros(n, bool)
+    if n < SPIKE_MIN_ROWS:
+        return drop
+    for q in MEASURED:
+        x = getattr(b, q)
+        if x is None:
+            continue
+        lo, hi, _ = LIMITS[q]
+        drop |= np.isfinite(x) & ((x < lo) | (x > hi))
+    k = np.flatnonzero(drop)
+    if k.size == 0 or k.size > SPIKE_SHARE * n or k[0] == 0 or k[-1] == n - 1:
+        return np.zeros(n, bool)
+    codes = b.test_id.codes
+    isolated = ~drop[k - 1] & ~drop[k + 1] & (codes[k - 1] == codes[k]) & (codes[k + 1] == codes[k])
+    return drop if np.all(isolated) else np.zeros(n, bool)
+
+
+def without(b, rows: np.ndarray):
+    """Batch *b* less the rows where *rows* is true (line numbers kept)."""
+    keep = ~rows
+    sub = lambda x: None if x is None else x[keep]  # noqa: E731
+    return Batch(b.where, b.first, b.word, type(b.test_id)(b.test_id.codes[keep], b.test_id.names),
+                 None if b.direction is None else type(b.direction)(b.direction.codes[keep], b.direction.names),
+                 sub(b.hand_force_N), b.time_s[keep], b.drum_temp_C[keep], b.torque_Nm[keep], sub(b.ambient_C),
+                 b.columns, (np.arange(len(b)) + b.first if b.lines is None else b.lines)[keep])
 
 
 def _check_numbers(b, q: str, x: np.ndarray, problems: list[str], lower: bool = True) -> None:

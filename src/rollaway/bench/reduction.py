@@ -29,10 +29,10 @@ from dataclasses import dataclass, field, replace
 import numpy as np
 
 from rollaway.errors import UserError
-from rollaway.bench.dataset import MAX_LISTED, Measurements, _raise
+from rollaway.bench.dataset import LIMITS, MAX_LISTED, Measurements, _raise
 from rollaway.bench.noise import Noise, sample_sigma
 from rollaway.bench.rawnoise import dispersion, raw_noise
-from rollaway.bench.cells import cell_problems, line_of
+from rollaway.bench.cells import cell_problems, line_of, spikes, without
 from rollaway.bench.time_axis import epoch_message, long_test_message
 
 BIN_S = 1.0                 # statistics are kept per second of log, windows are whole numbers of seconds
@@ -110,6 +110,8 @@ class Reducer:
         self.keep_raw = KEEP_RAW_ROWS if keep_raw is None else keep_raw
         self.has_ambient: bool | None = None
         self.time_column: tuple[str, str, bool] | None = None   # (as described, header cell, unit stated)
+        self.spikes = 0                       # isolated samples out of their physical range, dropped
+        self.first_spike = ""
 
     # -- one batch -------------------------------------------------------------------------
     def add(self, b) -> None:
@@ -123,6 +125,15 @@ class Reducer:
         elif self.has_ambient != (b.ambient_C is not None):
             raise UserError(f"{b.where}, column 'ambient_C': some files log the ambient and others do not; give it "
                             f"in every file or in none")
+        drop = spikes(b)
+        if drop.any():
+            i = int(np.flatnonzero(drop)[0])
+            if not self.spikes:
+                q = next(q for q in ("drum_temp_C", "torque_Nm", "ambient_C") if getattr(b, q) is not None
+                         and not LIMITS[q][0] <= getattr(b, q)[i] <= LIMITS[q][1])
+                self.first_spike = f"{b.at(i)}, column {b.column(q)}: {getattr(b, q)[i]:g} {LIMITS[q][2]}"
+            self.spikes += int(drop.sum())
+            b = without(b, drop)
         problems = cell_problems(b)
         codes = b.test_id.codes
         if problems:
@@ -256,6 +267,9 @@ class Reducer:
         notes = list(notes or [])
         if self.before_zero:
             notes.append(f"{self.before_zero:,} rows logged before time 0 (before the lever was applied) are not used")
+        if self.spikes:
+            notes.append(f"{self.spikes:,} isolated sample{'s' if self.spikes > 1 else ''} outside the physical range "
+                         f"dropped as spike{'s' if self.spikes > 1 else ''} (first: {self.first_spike})")
         if not reduce:
             if any(not t.raw for t in self.tests.values()) or sum(len(r[0]) for t in self.tests.values()
                                                                    for r in t.raw) != self.kept:
@@ -266,7 +280,7 @@ class Reducer:
 
     @property
     def kept(self) -> int:
-        return self.rows - self.before_zero
+        return self.rows - self.before_zero - self.spikes
 
     def _raw(self, source: str, files: int, notes: list[str]) -> Measurements:
         ids, dirs, force, cols = [], [], [], [[], [], [], []]
