@@ -31,3 +31,26 @@ def test_no_other_form_beside_a_verdict_whose_catalogue_form_is_the_truth(i):
     if not judge(hidden, d)["right"]:
         pytest.skip(f"campaign {i}: verdict {d.verdict} (the name is judged elsewhere)")
     assert not [a for a in d.alternatives if a.get("form") == "shape-free"], d.alternatives
+
+
+def test_channel_rivals_put_another_quantity_with_the_same_covariate_in_a_shape_free_form():
+    """Beside a friction falling with the lining temperature, a lining modulus (the same covariate, another
+    quantity) that lowered BIC is refitted shape-free in its place; an effect of another covariate (creep in time),
+    one that did not lower BIC, and the verdict's own effect are not."""
+    from types import SimpleNamespace
+
+    import numpy as np
+
+    from rollaway.identify.calibrate import calibrate
+    from rollaway.identify.shape import channel_rivals
+    from tests.identify.bench_generator import generate
+
+    data = generate(["modulus_linear"], seed=4, forces=np.linspace(180.0, 360.0, 3))
+    fit = calibrate(data, ["friction_temperature"])
+    cands = [SimpleNamespace(effect=e, delta_bic=b) for e, b in
+             (("modulus_temperature", -30.0), ("lining_creep", -40.0), ("shoe_thermal_lag", 5.0),
+              ("friction_temperature", -50.0))]
+    got = channel_rivals(data, fit, cands, None)
+    assert [[e.name for e in f.model.effects] for f in got] == [["modulus_temperature_shape"]]
+    assert got[0].bic < fit.bic                  # the modulus in any shape fits a modulus change better than friction
+    assert channel_rivals(data, fit, cands[1:], None) == []

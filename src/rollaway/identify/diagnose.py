@@ -35,7 +35,7 @@ from rollaway.bench.noise import Noise, noise_estimate, sample_sigma
 from rollaway.identify.detection import detection_limits, limits_words
 from rollaway.identify.diagnose_words import describe_residual, no_candidate_words, noise_words, structure_words
 from rollaway.identify.partner import own_evidence
-from rollaway.identify.shape import form_rivals, other_form_rivals
+from rollaway.identify.shape import channel_rivals, form_rivals, other_form_rivals
 from rollaway.identify.selection import (BIC_THRESHOLD, SCREEN_ITERATIONS, Candidate, cv_score, eliminate, exchange,
                                          folds, forward_step, has_per_test, per_test_signature, structure,
                                          weighted_chi2)
@@ -224,6 +224,8 @@ def diagnose(data: Measurements, params=None, effects=None, *, noise_torque_Nm: 
         ev.append(limits_words(limits))
     misfit = ("unexplained" if remaining and not any(e["form"] == "partial" for e in selected) else
               "partial" if remaining or any(e["form"] != "exact" for e in selected) else False)
+    if misfit and selected:       # something changes along the form's covariate: through which quantity, too?
+        forms += channel_rivals(data, refined, first_cands, drum.plan)
     pool = [base] + [c.fit for c in first_cands]
     if data is not full:                                  # the chosen model, refitted on every row
         _predictive(data, refined, pool, len(selected), drum, misfit, [a["fit"] for a in rivalry + weak], forms,
@@ -322,13 +324,16 @@ def _predictive(data, refined: FitResult, pool: list[FitResult], n_effects: int,
     (:func:`rollaway.uncertainty.bands.model_error`).  *keep*: fits the data
     cannot tell from *refined* (named beside the verdict): always among the alternatives, those of them named as
     rivals (*ties*) with at least their BIC weight (:func:`rollaway.uncertainty.bands.alternatives`); *forms*: *refined*'s set
-    with each effect shape-free (:func:`rollaway.identify.shape.form_rivals`), competing too.  A fit competes when
+    with each effect shape-free (:func:`rollaway.identify.shape.form_rivals`; where *misfit* is set, also with an
+    effect exchanged for a spline of another quantity along its covariate, :func:`rollaway.identify.shape.
+    channel_rivals`), competing too.  A fit competes when
     its BIC is within :data:`rollaway.uncertainty.bands.COMPETING_BIC` of *refined*'s or the held-out prediction
     does not rule it out (BIC alone is overconfident where residuals are autocorrelated); not a fit with per-test
     values (a zero offset per test): its held-out score refits the held-out test's own values.  Each alternative
     carries its own model error: widened as "partial" when its residual is structured (*noise*: the channels'
-    :class:`~rollaway.bench.noise.Noise`, for the test), and never below *refined*'s when *misfit* is set — a form
-    that clears the structure the verdict leaves is one guess at an effect the catalogue lacks, not a known form."""
+    :class:`~rollaway.bench.noise.Noise`, for the test); a catalogue form never below *refined*'s when *misfit* is
+    set (the structure the verdict leaves says no catalogue form is right).  A shape-free set errs by its own
+    held-out record: which quantity changes is carried by the channel rivals' weights, not by a floor."""
     from rollaway.identify.ambiguity import not_ruled_out
     from rollaway.uncertainty.bands import COMPETING_BIC, alternatives, model_error
     from rollaway.model.predictive_record import record
@@ -348,12 +353,18 @@ def _predictive(data, refined: FitResult, pool: list[FitResult], n_effects: int,
         f.covariance = predictive_covariance(f, drum.fixed_priors(), ess_inflation(f))
         own = misfit if noise is None else (misfit or "partial") if structure(f, *noise)["structured"] else False
         err = model_error(f, own)
-        if misfit:         # the verdict leaves structure: no set's form is known right, none errs less than it
+        if misfit and not _shape_free(f):     # the verdict leaves structure: no catalogue form errs less than it
             err["rel_sd"] = max(err["rel_sd"], refined.fit_info["predictive"]["model_error_rel_sd"])
         f.fit_info["predictive"] = record(err, val)
         f.fit_info["calibration"] = drum.record()
         alts.append((w, f))
     refined.fit_info["alternatives"] = alts
+
+
+def _shape_free(fit: FitResult) -> bool:
+    """True when an effect of *fit* is a shape-free form (:mod:`rollaway.effects.shape_free`)."""
+    from rollaway.effects.shape_free import is_shape_free
+    return any(is_shape_free(e) for e in fit.model.effects)
 
 
 def _per_test_effect(fit: FitResult) -> bool:

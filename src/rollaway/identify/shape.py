@@ -68,6 +68,34 @@ def form_rivals(data, fit, params) -> list:
     return out
 
 
+def channel_rivals(data, fit, candidates, params) -> list:
+    """*fit*'s effect set with one effect in turn replaced by the shape-free version of another effect that changes
+    another quantity along the same covariate (a friction and a lining modulus, both functions of the lining
+    temperature; a cable relaxation and a lining creep, both of time), for each step-1 *candidate* that lowered BIC
+    against the drum: refitted with the brake parameters *params* frees.  Where the verdict's catalogue form leaves
+    structure, the data say that *something* changes along that covariate, not through which quantity; a spline in
+    the verdict's own quantity then fits the tested conditions whichever it is, and errs only where the quantities
+    part (the other direction, another hand force).  These fits put the other quantity's spline into the bands,
+    weighed by its held-out prediction."""
+    from rollaway.identify.workers import fit_all
+    effects = list(fit.model.effects)
+    names = {e.name for e in effects}
+    jobs = []
+    for k, eff in enumerate(effects):
+        found = None if is_shape_free(eff) else shape_hook(eff)
+        if found is None:
+            continue
+        for c in candidates:
+            other = get_effect(c.effect)
+            hook = shape_hook(other)
+            if c.effect in names or c.delta_bic >= 0 or hook is None or hook[1] != found[1] or hook[0] == found[0]:
+                continue
+            cls = flexible_effect(other, covariate_of(fit, hook[1]))
+            if cls is not None:
+                jobs.append((effects[:k] + [cls] + effects[k + 1:], params, dict(start=fit.values)))
+    return [f for f in fit_all(data, jobs) if f.jacobian is not None] if jobs else []
+
+
 OTHER_FORM_BIC = 2.0          # "positive" evidence (Kass & Raftery 1995) that another effect's shape fits better
 
 

@@ -27,7 +27,8 @@ question also depends on which effects were chosen and on how wrong the chosen f
   scores (Bayesian-bootstrap pseudo-BMA: w ∝ exp(−½·Σ score) averaged over Dirichlet reweightings
   of the tests; Yao et al. 2018, "Using stacking to average Bayesian predictive distributions",
   §3.1, with the Gaussian log score); draws are split among them, and each set's draws carry its own
-  model error (its own held-out tests; where the verdict leaves structure, no less than the verdict's).
+  model error (its own held-out tests; where the verdict leaves structure, a catalogue form no less than the
+  verdict's; a shape-free form by its own, beside the splines of the other quantities along the same covariate).
   The chosen effects' own forms compete too: the same set with each effect shape-free (:func:`rollaway.identify.shape.form_rivals`) is weighed
   the same way, so a catalogue form the residual cannot fault but the held-out tests do not prefer leaves
   its doubt in the band;
