@@ -330,3 +330,20 @@ def test_a_spline_of_the_right_quantity_errs_by_its_own_held_out_record():
     assert rows[0]["hidden"] == "modulus_sigmoid" and len(rows) == 4, rows
     assert all(r["covered"] for r in rows), rows
     assert max(r["half_width"] for r in rows if r["question"] != "force_low") < 0.08, rows
+
+
+def test_where_no_catalogue_form_clears_the_structure_the_closest_effects_shapes_compete(monkeypatch):
+    """A sigmoid modulus drop with a friction fade above 150 °C on another drum (1-min, two-effect campaign 343 of
+    band_questions): no catalogue effect clears the structure ("none", closest modulus or friction).  The catalogue
+    forms alone, their error ×4, gave bands above the truth at 270 N, 450 N and 280 °C (from 0.93–1.05, the truth
+    0.91–1.00); the closest effects' shape-free forms compete too, the modulus spline takes the mixture and the
+    bands hold the truth."""
+    from tests.uncertainty.band_questions import campaign as question_campaign
+    import rollaway.identify.diagnose as dg
+    seen, original = [], dg.diagnose
+    monkeypatch.setattr(dg, "diagnose", lambda *a, **k: seen.append(original(*a, **k)) or seen[-1])
+    rows = question_campaign(343, two=True)
+    d = seen[0]
+    assert d.verdict == "none" and d.remaining_structure
+    assert any(m.name.endswith("_shape") for _, m in d.model.alternatives), d.model.alternatives
+    assert len(rows) == 4 and all(r["covered"] for r in rows), rows

@@ -35,7 +35,7 @@ from rollaway.bench.noise import Noise, noise_estimate, sample_sigma
 from rollaway.identify.detection import detection_limits, limits_words
 from rollaway.identify.diagnose_words import describe_residual, no_candidate_words, noise_words, structure_words
 from rollaway.identify.partner import own_evidence
-from rollaway.identify.shape import channel_rivals, form_rivals, other_form_rivals
+from rollaway.identify.shape import form_rivals, other_form_rivals, shape_rivals
 from rollaway.identify.selection import (BIC_THRESHOLD, SCREEN_ITERATIONS, Candidate, cv_score, eliminate, exchange,
                                          folds, forward_step, has_per_test, per_test_signature, structure,
                                          weighted_chi2)
@@ -200,7 +200,10 @@ def diagnose(data: Measurements, params=None, effects=None, *, noise_torque_Nm: 
                       + (f"  {', '.join(dropped)} only absorbed part of this form mismatch and is not kept."
                          if dropped else ""))
     refined = recheck(drum, data, refined, [e["effect"] for e in selected]) if selected else refined
-    forms = form_rivals(data, refined, drum.plan) if selected else []      # shape-free: the bands, other forms
+    misfit = ("unexplained" if remaining and not any(e["form"] == "partial" for e in selected) else
+              "partial" if remaining or any(e["form"] != "exact" for e in selected) else False)
+    # shape-free: the bands, other forms; where the form leaves structure, the other quantities' splines too
+    forms, channels = shape_rivals(data, refined, drum.plan, first_cands if misfit else ()) if selected else ([], [])
     rivalry = _rivals(selected, _same_drum(data, params, base, first_cands), base_cv, validity(full), nq)
     if len(selected) == 1 and selected[0]["form"] == "exact" and not remaining and len(rivalry) < MAX_RIVALS:
         own = next((f for f in forms if len(f.effects) == 1), None)
@@ -216,16 +219,14 @@ def diagnose(data: Measurements, params=None, effects=None, *, noise_torque_Nm: 
             a["tell_apart"] = tell_apart(refined, a["fit"], validity(full), nq.sigma)
     if verdict == "none" and remaining and not rivalry:
         rivalry = closest(base, first_cands, base_cv, BIC_THRESHOLD, validity(full), nq.sigma)
+        forms = form_rivals(data, [a["fit"] for a in rivalry], drum.plan)   # the closest effects' own shapes
     weak = weak_alternatives(params, base, first_cands, validity(full), nq.sigma) if not chosen and not remaining else []
     indist = [" + ".join(a["effects"]) for a in rivalry + weak]
     ev += alternative_words(verdict, rivalry + weak)
     limits = detection_limits(data, base) if verdict == "none" and not remaining else []
     if limits:
         ev.append(limits_words(limits))
-    misfit = ("unexplained" if remaining and not any(e["form"] == "partial" for e in selected) else
-              "partial" if remaining or any(e["form"] != "exact" for e in selected) else False)
-    if misfit and selected:       # something changes along the form's covariate: through which quantity, too?
-        forms += channel_rivals(data, refined, first_cands, drum.plan)
+    forms += channels
     pool = [base] + [c.fit for c in first_cands]
     if data is not full:                                  # the chosen model, refitted on every row
         _predictive(data, refined, pool, len(selected), drum, misfit, [a["fit"] for a in rivalry + weak], forms,
@@ -353,7 +354,7 @@ def _predictive(data, refined: FitResult, pool: list[FitResult], n_effects: int,
         f.covariance = predictive_covariance(f, drum.fixed_priors(), ess_inflation(f))
         own = misfit if noise is None else (misfit or "partial") if structure(f, *noise)["structured"] else False
         err = model_error(f, own)
-        if misfit and not _shape_free(f):     # the verdict leaves structure: no catalogue form errs less than it
+        if misfit == "unexplained" or misfit and not _shape_free(f):   # no catalogue form errs less than the verdict
             err["rel_sd"] = max(err["rel_sd"], refined.fit_info["predictive"]["model_error_rel_sd"])
         f.fit_info["predictive"] = record(err, val)
         f.fit_info["calibration"] = drum.record()

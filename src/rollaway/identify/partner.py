@@ -18,7 +18,8 @@ from rollaway.identify.selection import (BIC_THRESHOLD, REFORM_ITERATIONS, SCREE
 from rollaway.uncertainty.heldout import loto_residuals
 
 
-def beyond_reform(data, params, chosen: list[str], current: FitResult, two: FitResult, refree=()) -> dict | None:
+def beyond_reform(data, params, chosen: list[str], current: FitResult, two: FitResult, refree=(),
+                  also=()) -> dict | None:
     """Does the fit *two* (the effect *chosen* plus a second one) predict held-out tests better than
     the first effect re-formed — its hook changed by a linear spline of its covariate
     (:func:`rollaway.identify.shape.flexible_effect`), no second effect?  A partner that only absorbs a
@@ -40,7 +41,8 @@ def beyond_reform(data, params, chosen: list[str], current: FitResult, two: FitR
     needed by the bare drum can be needed once the first effect is in, and a second effect that stands in
     for it (a gap or a radial contraction for a lining of another thickness) is then no discovery; with them
     freed, the second effect must also still lower BIC below :data:`BIC_THRESHOLD` against the first effect alone
-    (``delta_bic_refreed``)."""
+    (``delta_bic_refreed``).  *also*: more fit jobs ``(effects, params, kwargs)`` run in the same batch on the
+    machine's cores, their fits returned as ``"also"``."""
     from rollaway.effects import get_effect
     from rollaway.identify.shape import covariate_of, flexible_effect, shape_hook
     if len(chosen) != 1 or two.jacobian is None:
@@ -52,18 +54,23 @@ def beyond_reform(data, params, chosen: list[str], current: FitResult, two: FitR
         return None
     refree = [n for n in refree if n not in getattr(params, "free", ())]
     delta_bic = None
+    jobs = []
     if refree:
         from rollaway.identify.model import DrumPlan
         params = DrumPlan(params.params, tuple(params.free) + tuple(refree))
-        two = calibrate(data, two.effects, params, start=two.values)
+        jobs = [(two.effects, params, dict(start=two.values)), (chosen, params, dict(start=current.values))]
+    done = fit_all(data, jobs + [([flex], params, dict(start=current.values, max_iterations=REFORM_ITERATIONS))]
+                   + list(also))                                                       # side by side
+    *refit, reform = done[:len(jobs) + 1]
+    if refit:
+        two, one = refit
         if two.jacobian is None:
             return None
-        delta_bic = two.bic - calibrate(data, chosen, params, start=current.values).bic
-    reform = calibrate(data, [flex], params, start=current.values, max_iterations=REFORM_ITERATIONS)
+        delta_bic = two.bic - one.bic
     if reform.jacobian is None:
         return None
     out = _heldout_preference(data, two, reform)
-    out.update(reform_effect=flex.name, delta_bic_refreed=delta_bic)
+    out.update(reform_effect=flex.name, delta_bic_refreed=delta_bic, also=done[len(jobs) + 1:])
     out["passes"] = bool(out["passes"] and (delta_bic is None or delta_bic < BIC_THRESHOLD))
     return out
 
@@ -104,21 +111,24 @@ def own_evidence(data, params, chosen, current, struct, fits, nq, nt, steps, ev,
     The first is the one that explains more alone (lower BIC, both refitted with the same brake parameters): the
     order of the forward steps was decided with the drum of that step, which a later step may have freed further."""
     alone = fit_all(data, [([c], params, dict(start=current.values)) for c in chosen])
+    by_name = dict(zip(chosen, alone))
     if alone[1].bic < alone[0].bic:
         chosen = [chosen[1], chosen[0]]
         fits = [alone[1], current]
         steps.append({"step": "order", "first": chosen[0], "delta_bic": float(alone[0].bic - alone[1].bic)})
         ev.append(f"With the drum both share, {chosen[0]} alone explains more than {chosen[1]} alone (BIC lower by "
                   f"{alone[0].bic - alone[1].bic:.1f}): it is the first of the two.")
-    own = beyond_reform(data, params, chosen[:1], current, current, refree)
+    first = fits[0] if fits and fits[0] is not None and fits[0].effects == chosen[:1] else by_name[chosen[0]]
+    ahead = _reform_job(params, chosen[0], first) if names else None      # beside_reformed's first fit, ahead
+    own = beyond_reform(data, params, chosen[:1], current, current, refree, also=[ahead] if ahead else ())
     if own is None:
         return chosen, current, struct, fits
+    reform = own.pop("also")
     steps.append({"step": "own evidence", "effect": chosen[1], "kept": own["passes"], "beyond_reform": own})
     if own["passes"]:
         return chosen, current, struct, fits
-    first = fits[0] if fits and fits[0] is not None and fits[0].effects == chosen[:1] else \
-        calibrate(data, chosen[:1], params, start=current.values)
-    other = beside_reformed(data, params, chosen[0], first, names, nq, nt) if names else None
+    other = beside_reformed(data, params, chosen[0], first, names, nq, nt,
+                            reform=reform[0] if reform else None) if names else None
     if other is not None:
         name, pair, dbic, pref = other
         steps.append({"step": "beside the re-formed first", "effect": name, "delta_bic": dbic, "heldout": pref})
@@ -136,21 +146,32 @@ def own_evidence(data, params, chosen, current, struct, fits, nq, nt, steps, ev,
     return chosen[:1], first, structure(first, nq, nt), [first]
 
 
-def beside_reformed(data, params, first: str, first_fit: FitResult, names, nq: Noise, nt: Noise):
+def _reform_job(params, first: str, first_fit: FitResult):
+    """The fit job of *first* re-formed (its hook as a linear spline of its covariate, started from *first_fit*),
+    or None without a flexible form."""
+    from rollaway.effects import get_effect
+    from rollaway.identify.shape import covariate_of, flexible_effect, shape_hook
+    found = shape_hook(get_effect(first))
+    flex = None if found is None else flexible_effect(get_effect(first), covariate_of(first_fit, found[1]))
+    return None if flex is None else ([flex], params, dict(start=first_fit.values, max_iterations=REFORM_ITERATIONS))
+
+
+def beside_reformed(data, params, first: str, first_fit: FitResult, names, nq: Noise, nt: Noise, reform=None):
     """A second effect on the evidence it has beside the first effect *first* re-formed (its hook as a linear
     spline, :func:`rollaway.identify.shape.flexible_effect`), for when the first's catalogue form is wrong: then
     the pair keeps the first's misfit and the first re-formed absorbs part of the second, and a forward step on
     the catalogue form can pick the wrong second effect.  Only when the first re-formed still leaves structure.
     Each effect of *names* is screened beside the re-formed first (:data:`SCREEN_ITERATIONS`); the best by BIC
     is refitted and must lower BIC below :data:`BIC_THRESHOLD` and predict held-out tests better by
-    :func:`beyond_reform`'s rule.  Returns (name, the catalogue pair's fit, ΔBIC, held-out comparison) or None."""
+    :func:`beyond_reform`'s rule.  *reform*: that re-formed first, when already fitted (:func:`_reform_job`).
+    Returns (name, the catalogue pair's fit, ΔBIC, held-out comparison) or None."""
     from rollaway.effects import get_effect
-    from rollaway.identify.shape import covariate_of, flexible_effect, shape_hook
-    found = shape_hook(get_effect(first))
-    flex = None if found is None else flexible_effect(get_effect(first), covariate_of(first_fit, found[1]))
-    if flex is None:
+    job = _reform_job(params, first, first_fit)
+    if job is None:
         return None
-    reform = calibrate(data, [flex], params, start=first_fit.values, max_iterations=REFORM_ITERATIONS)
+    flex = job[0][0]
+    if reform is None:
+        reform = calibrate(data, *job[:2], **job[2])
     if reform.jacobian is None or not structure(reform, nq, nt)["structured"]:
         return None
     others = [c for c in names if c != first and not get_effect(c).per_test_parameters()]

@@ -48,24 +48,48 @@ def flexible_effect(effect: Effect, covariate_values: np.ndarray) -> type[Effect
     return spline_effect(effect, knots) if len(knots) >= 3 else None
 
 
-def form_rivals(data, fit, params) -> list:
-    """*fit*'s effect set with each effect in turn replaced by its shape-free version (:func:`flexible_effect`),
-    refitted with the brake parameters *params* frees: the same physics in every form the data allow.  A
-    catalogue form the residual cannot fault may still be wrong where the bench did not look (a creep law that
-    flattens too early leaves its later loss to the cooling law, and the split of μ_d against the eq. (24) slope
-    with it); these fits let the bands weigh that form against the catalogue's by held-out prediction."""
-    from rollaway.identify.calibrate import calibrate
+def _form_jobs(fit, params) -> list:
     effects = list(fit.model.effects)
-    out = []
+    jobs = []
     for k, eff in enumerate(effects):
         found = shape_hook(eff)
         flex = None if found is None or is_shape_free(eff) else flexible_effect(eff, covariate_of(fit, found[1]))
-        if flex is None:
+        if flex is not None:
+            jobs.append((effects[:k] + [flex] + effects[k + 1:], params, dict(start=fit.values)))
+    return jobs
+
+
+def _channel_jobs(fit, candidates, params) -> list:
+    effects = list(fit.model.effects)
+    names = {e.name for e in effects}
+    jobs = []
+    for k, eff in enumerate(effects):
+        found = None if is_shape_free(eff) else shape_hook(eff)
+        if found is None:
             continue
-        f = calibrate(data, effects[:k] + [flex] + effects[k + 1:], params, start=fit.values)
-        if f.jacobian is not None:
-            out.append(f)
-    return out
+        for c in candidates:
+            hook = shape_hook(get_effect(c.effect))
+            if c.effect in names or c.delta_bic >= 0 or hook is None or hook[1] != found[1] or hook[0] == found[0]:
+                continue
+            cls = flexible_effect(get_effect(c.effect), covariate_of(fit, hook[1]))
+            if cls is not None:
+                jobs.append((effects[:k] + [cls] + effects[k + 1:], params, dict(start=fit.values)))
+    return jobs
+
+
+def _fitted(data, jobs) -> list:
+    from rollaway.identify.workers import fit_all
+    return [f for f in fit_all(data, jobs) if f.jacobian is not None] if jobs else []
+
+
+def form_rivals(data, fits, params) -> list:
+    """Each fit of *fits* (one fit or several) with each of its effects in turn replaced by its shape-free version
+    (:func:`flexible_effect`), refitted with the brake parameters *params* frees (side by side on the machine's
+    cores): the same physics in every form the data allow.  A catalogue form the residual cannot fault may still
+    be wrong where the bench did not look (a creep law that flattens too early leaves its later loss to the
+    cooling law, and the split of μ_d against the eq. (24) slope with it); these fits let the bands weigh that form
+    against the catalogue's by held-out prediction."""
+    return _fitted(data, [j for f in (fits if isinstance(fits, (list, tuple)) else [fits]) for j in _form_jobs(f, params)])
 
 
 def channel_rivals(data, fit, candidates, params) -> list:
@@ -77,23 +101,18 @@ def channel_rivals(data, fit, candidates, params) -> list:
     the verdict's own quantity then fits the tested conditions whichever it is, and errs only where the quantities
     part (the other direction, another hand force).  These fits put the other quantity's spline into the bands,
     weighed by its held-out prediction."""
+    return _fitted(data, _channel_jobs(fit, candidates, params))
+
+
+def shape_rivals(data, fit, params, candidates=()) -> tuple[list, list]:
+    """(:func:`form_rivals`, :func:`channel_rivals` of *candidates*) of *fit*, fitted in one batch on the machine's
+    cores."""
     from rollaway.identify.workers import fit_all
-    effects = list(fit.model.effects)
-    names = {e.name for e in effects}
-    jobs = []
-    for k, eff in enumerate(effects):
-        found = None if is_shape_free(eff) else shape_hook(eff)
-        if found is None:
-            continue
-        for c in candidates:
-            other = get_effect(c.effect)
-            hook = shape_hook(other)
-            if c.effect in names or c.delta_bic >= 0 or hook is None or hook[1] != found[1] or hook[0] == found[0]:
-                continue
-            cls = flexible_effect(other, covariate_of(fit, hook[1]))
-            if cls is not None:
-                jobs.append((effects[:k] + [cls] + effects[k + 1:], params, dict(start=fit.values)))
-    return [f for f in fit_all(data, jobs) if f.jacobian is not None] if jobs else []
+    forms, channels = _form_jobs(fit, params), _channel_jobs(fit, candidates, params)
+    done = fit_all(data, forms + channels) if forms or channels else []
+    ok = [f.jacobian is not None for f in done]
+    return ([f for f, g in zip(done[:len(forms)], ok) if g],
+            [f for f, g in zip(done[len(forms):], ok[len(forms):]) if g])
 
 
 OTHER_FORM_BIC = 2.0          # "positive" evidence (Kass & Raftery 1995) that another effect's shape fits better
