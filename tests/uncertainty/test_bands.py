@@ -347,3 +347,18 @@ def test_where_no_catalogue_form_clears_the_structure_the_closest_effects_shapes
     assert d.verdict == "none" and d.remaining_structure
     assert any(m.name.endswith("_shape") for _, m in d.model.alternatives), d.model.alternatives
     assert len(rows) == 4 and all(r["covered"] for r in rows), rows
+
+
+def test_a_bench_record_carries_the_transducer_gain_that_no_held_out_test_sees():
+    """A record measured on a bench carries the torque transducer's gain uncertainty beside what the held-out tests
+    measured; a model without one (no bench) gets none.  On a 1 Hz log of a power-law lining creep (campaign 22 of
+    band_questions) the creep's shape-free form predicts its held-out tests at the noise and the bands at 270 N and
+    from 280 °C were ±0.07 % and missed the truth by 0.04 %; with the gain they hold it."""
+    from rollaway.uncertainty.predictive import TRANSDUCER_REL_SD, model_error_sd
+    from tests.uncertainty.band_questions import campaign as question_campaign
+    assert model_error_sd({}, 2.0) == 0.0
+    assert model_error_sd({"model_error_rel_sd": 0.0}, 1.0) == pytest.approx(TRANSDUCER_REL_SD)
+    assert model_error_sd({"model_error_rel_sd": 0.004}, 1.0) == pytest.approx(np.hypot(0.004, TRANSDUCER_REL_SD))
+    rows = question_campaign(22, sampling="1Hz")
+    assert rows[0]["hidden"] == "creep_power_law" and len(rows) == 4, rows
+    assert all(r["covered"] for r in rows) and max(r["half_width"] for r in rows) < 0.01, rows

@@ -71,13 +71,13 @@ def test_a_right_model_has_no_model_error_on_average():
 
 
 def test_model_error_grows_from_the_tested_edge():
-    from rollaway.uncertainty.predictive import UNSEEN
+    from rollaway.uncertainty.predictive import TRANSDUCER_REL_SD as G, UNSEEN
     pred = {"model_error_rel_sd": 0.01, "model_error_floor_rel_sd": 0.02}
-    assert abs(model_error_sd(pred, 1.0) - np.hypot(0.01, UNSEEN * 0.02)) < 1e-12
+    assert abs(model_error_sd(pred, 1.0) - np.sqrt(0.01 ** 2 + (UNSEEN * 0.02) ** 2 + G ** 2)) < 1e-12
     assert abs(model_error_sd(pred, 1.0 + 1e-9) - model_error_sd(pred, 1.0)) < 1e-6    # no jump at the edge
     s = [model_error_sd(pred, f) for f in (1.0, 1.25, 1.5, 2.0, 3.0)]
     assert all(a < b for a, b in zip(s, s[1:]))
-    assert abs(model_error_sd(pred, 2.0) ** 2 - (0.02 ** 2 + 0.02 ** 2 * (UNSEEN ** 2 + 1.0))) < 1e-12
+    assert abs(model_error_sd(pred, 2.0) ** 2 - (0.02 ** 2 + 0.02 ** 2 * (UNSEEN ** 2 + 1.0) + G ** 2)) < 1e-12
     assert model_error_sd({}, 2.0) == 0.0
 
 

@@ -14,6 +14,8 @@ SPAN_FLOOR = {"hand_force_N": 50.0, "initial_temp_C": 50.0}     # a single teste
 UNSEEN = 0.5                 # [assumed] the unseen model error counted inside the tested range, as a share of the
                              # floor: an error that size adds a quarter of the noise's variance to a held-out score
                              # (measured on tests/uncertainty/band_questions.py: 0.25 left 1-min bands at 0.88)
+TRANSDUCER_REL_SD = 0.001   # [assumed] the bench torque transducer's gain uncertainty (a class-0.1 % calibration):
+                             # common to every test, so no held-out score sees it, and it scales every road torque
 MAX_LEVEL_DISTANCE = 10.0    # a hand force at or below the one where the torque vanishes: the error is at most this far
 TOLERANCE = 0.02             # within 2 % of the span of a tested edge counts as tested
 
@@ -96,11 +98,14 @@ def model_error_sd(pred: dict, factor: float, edge: float = 0.0) -> float:
     The measured error (``rel_sd``) grows with the distance from the tested range.  An error the data could not
     see — below ``floor_rel_sd``, the noise's resolution of one test's held-out error — is counted too: a share
     :data:`UNSEEN` of the floor everywhere, and growing with the distance from the tested edge, so that a
-    question just outside the tested range is as good as a tested one."""
+    question just outside the tested range is as good as a tested one.  A record measured on a bench (one with
+    ``model_error_rel_sd``) also carries the transducer's gain uncertainty :data:`TRANSDUCER_REL_SD`, which no
+    held-out test can see: on a dense log the other terms can fall to a few parts in 10 000."""
     sd = float(pred.get("model_error_rel_sd", 0.0))
     floor = float(pred.get("model_error_floor_rel_sd", 0.0))
-    return max(float(np.sqrt((sd * factor) ** 2 + floor ** 2 * (UNSEEN ** 2 + max(factor - 1.0, 0.0) ** 2))),
-               float(edge))
+    gain = TRANSDUCER_REL_SD if "model_error_rel_sd" in pred else 0.0
+    return max(float(np.sqrt((sd * factor) ** 2 + floor ** 2 * (UNSEEN ** 2 + max(factor - 1.0, 0.0) ** 2)
+                             + gain ** 2)), float(edge))
 
 
 def model_error_draws(pred: dict, n: int, factor: float, rng: np.random.Generator, edge: float = 0.0) -> np.ndarray:
