@@ -78,3 +78,27 @@ def test_a_calibrated_models_covariance_joins_the_scatter(write_population, tmp_
         e = estimate(pop, "mc", 20_000, seed=seed)
         misses += not (e.total.ci95[0] <= truth <= e.total.ci95[1])
     assert misses <= 3
+
+
+def _catalogue():
+    from rollaway.effects import CATALOGUE, get_effect
+    return [n for n in sorted(CATALOGUE) if not get_effect(n).per_test_parameters()]
+
+
+@pytest.mark.parametrize("effect", _catalogue())
+def test_every_catalogue_effect_runs_with_a_calibrated_drum_drawn_per_car(effect, write_population, tmp_path):
+    """A calibrated model whose fitted brake parameters (μ_d, the shoe-arm ratio) are drawn per car: each car's
+    arms reach the effect's hook as arrays (friction_temperature's self-locking bound once took ``max`` of them)."""
+    from rollaway.effects import get_effect
+    from rollaway.model.model_file import save_model
+    eff = get_effect(effect)
+    values = {f"{effect}.{k}": v for k, v in eff.typical_values().items()}
+    model = DrumModel(dataclasses.replace(DrumModel("paper").params, mu_drum=0.38), [effect], values,
+                      covariance=Covariance(("mu_drum", "shoe_arm_ratio"), np.diag([0.01 ** 2, 0.05 ** 2])))
+    path = tmp_path / "cal.toml"
+    save_model(model, path)
+    head = (f'params = "{path.name}"\ngrade_pct = 20\ndirection = "uphill"\noccupants = 5\nhand_force_N = 300\n'
+            'duration_s = 600\ninitial_drum_temp_C = 200\n')
+    pop = load_population(write_population("[vary]\nhand_force_N = { normal = [300, 30] }\n", head=head))
+    e = estimate(pop, "mc", 400, seed=0)
+    assert 0.0 <= e.total.ci95[0] <= e.total.probability <= e.total.ci95[1] <= 1.0

@@ -26,6 +26,6 @@ class FrictionTemperature(Effect):
 
     def friction(self, state, mu, v):
         p = state.params
-        mu_max = MU_MAX_FRACTION * p.shoe_arm_normal_m / max(p.shoe_arm_friction_m, 1e-12)
+        mu_max = MU_MAX_FRACTION * p.shoe_arm_normal_m / np.maximum(p.shoe_arm_friction_m, 1e-12)   # one per car
         out = mu * (1.0 + v["mu_slope_per_K"] * (state.lining_temp_C - REFERENCE_TEMP_C))
         return np.clip(out, 1e-3, mu_max)
