@@ -314,6 +314,8 @@ def test_where_the_verdict_leaves_structure_a_spline_of_the_other_quantity_compe
     assert d.remaining_structure or any(e["form"] != "exact" for e in d.effects)
     weights = {m.name: w for w, m in d.model.alternatives}
     assert weights.get("paper + modulus_temperature_shape", 0.0) > 0.5, weights
+    said = next(e for e in d.as_dict()["evidence"] if e.startswith("Parameter intervals count"))
+    assert "also in the bands: modulus_temperature_shape" in said, said        # the diagnosis says what the bands draw
     for _, m in d.model.alternatives:
         own = m.predictive["model_error_rel_sd"]
         assert own < rel if m.name.endswith("_shape") else own >= rel, (m.name, own, rel)

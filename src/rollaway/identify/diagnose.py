@@ -256,7 +256,9 @@ def _interval_words(fit: FitResult, drum: DrumCalibration, alts) -> str:
     return ("Parameter intervals count " + "; ".join(filter(None, [
         "autocorrelated residuals (variance × " + ", ".join(f"{v:.2g} {ch}" for ch, v in k.items()) + ")",
         f"the assumed spread of {', '.join(fixed)} (held, not known)" if fixed else "",
-        f"{len(alts)} competing effect set{'s' if len(alts) > 1 else ''} (mixture)" if alts else ""]))
+        f"{len(alts)} competing effect set{'s' if len(alts) > 1 else ''} (mixture, also in the bands: "
+        + ", ".join(f"{' + '.join(f.effects) or 'the drum alone'} {w:.0%}" for w, f in alts)
+        + f", {' + '.join(fit.effects) or 'the drum alone'} the rest)" if alts else ""]))
         + " (rollaway.identify.intervals).")
 
 
