@@ -78,8 +78,11 @@ def extrapolation(pred: dict, *, hand_force_N: float, direction: str, initial_te
 def edge_sd(pred: dict, hand_force_N: float, zero_torque_force_N: float | None = None,
             level_ratio: float | None = None) -> float:
     """The relative torque error the bench itself showed when it extrapolated in hand force (the record's
-    ``model_error_edge_low``/``_high`` = [rel_sd, distance]: the edge force predicted from the others), scaled
-    linearly to the question's distance beyond that edge (:func:`force_distance`); 0 inside the tested forces."""
+    ``model_error_edge_low``/``_high`` = [rel_sd, distance]: the edge force predicted from the others), scaled to
+    the question's distance d beyond that edge (:func:`force_distance`) by r = d/distance, and by r² beyond it: the
+    calibration takes the level and the slope of a misfit in hand force (eq. (24)'s offset and slope), so what is
+    left grows with the square of the distance; r within it (no narrower than the measured error's linear share).
+    0 inside the tested forces."""
     rng = pred.get("tested_hand_force_N")
     if rng is None:
         return 0.0
@@ -87,7 +90,8 @@ def edge_sd(pred: dict, hand_force_N: float, zero_torque_force_N: float | None =
     edge = pred.get("model_error_edge_low" if hand_force_N < rng[0] else "model_error_edge_high")
     if dist <= 0.0 or not edge or edge[1] <= 0.0:
         return 0.0
-    return float(edge[0]) * dist / float(edge[1])
+    r = dist / float(edge[1])
+    return float(edge[0]) * max(r, r * r)
 
 
 def model_error_sd(pred: dict, factor: float, edge: float = 0.0) -> float:
