@@ -102,3 +102,26 @@ def test_every_catalogue_effect_runs_with_a_calibrated_drum_drawn_per_car(effect
     pop = load_population(write_population("[vary]\nhand_force_N = { normal = [300, 30] }\n", head=head))
     e = estimate(pop, "mc", 400, seed=0)
     assert 0.0 <= e.total.ci95[0] <= e.total.probability <= e.total.ci95[1] <= 1.0
+
+
+def test_a_fleet_below_the_tested_forces_carries_the_benchs_own_force_extrapolation(write_population, tmp_path):
+    """As in a single car's band (rollaway.uncertainty.draws.rollaway_risk): below the tested hand forces each car's
+    model error is at least the bench's own error of predicting its lowest force from the others, scaled to the
+    distance (rollaway.uncertainty.predictive.edge_sd)."""
+    from rollaway.model.model_file import save_model
+    from rollaway.risk.limit_state import model_draws
+    spread = {}
+    for edge in (None, [0.05, 0.5]):
+        pred = {"model_error_rel_sd": 0.0, "model_error_floor_rel_sd": 0.0, "model_error_dof": 5,
+                "tested_hand_force_N": [180.0, 360.0], "tested_initial_temp_C": [100.0, 250.0],
+                "tested_duration_s": 3600.0, "tested_directions": ["downhill", "uphill"]}
+        if edge:
+            pred["model_error_edge_low"] = edge
+        model = DrumModel("paper", covariance=Covariance(("mu_drum",), np.array([[1e-6]])), predictive=pred)
+        path = tmp_path / f"m{bool(edge)}.toml"
+        save_model(model, path)
+        head = (f'params = "{path.name}"\ngrade_pct = 20\ndirection = "uphill"\noccupants = 5\nhand_force_N = 135\n'
+                'duration_s = 3600\ninitial_drum_temp_C = 200\n')
+        pop = load_population(write_population("", head=head))
+        spread[bool(edge)] = float(np.std(model_draws(pop, 4000, np.random.default_rng(0))["eps"]))
+    assert spread[True] > 20 * spread[False] and spread[True] > 0.05, spread

@@ -149,7 +149,7 @@ def model_draws(population, n: int, rng: np.random.Generator) -> dict | None:
     """
     from rollaway.uncertainty.draws import draw_values, own_record, torque_level_ratio, zero_torque_force
     from rollaway.physics.drum import direction_sign
-    from rollaway.uncertainty.predictive import extrapolation, model_error_draws
+    from rollaway.uncertainty.predictive import edge_sd, extrapolation, model_error_draws
 
     model = population.model
     pred = model.predictive
@@ -182,11 +182,14 @@ def model_draws(population, n: int, rng: np.random.Generator) -> dict | None:
     force, t0, hold = pop.fixed("hand_force_N"), pop.fixed("initial_drum_temp_C"), pop.fixed("duration_s")
     level = torque_level_ratio(model, force, pred.get("tested_hand_force_N"),
                                float(direction_sign(pop.directions[0])), t0, hold)
+    f0 = zero_torque_force(model)
     factor, _ = extrapolation(pred, hand_force_N=force, direction=pop.directions[0], initial_temp_C=t0,
-                              duration_s=hold, zero_torque_force_N=zero_torque_force(model), level_ratio=level)
+                              duration_s=hold, zero_torque_force_N=f0, level_ratio=level)
     eps = np.empty(n)
-    for k, (_, m) in enumerate(parts):     # each effect set errs by its own held-out record
-        eps[owner == k] = model_error_draws(own_record(pred, m), int(np.sum(owner == k)), factor, rng)
+    for k, (_, m) in enumerate(parts):     # each effect set errs by its own held-out record (and force extrapolation)
+        own = own_record(pred, m)
+        eps[owner == k] = model_error_draws(own, int(np.sum(owner == k)), factor, rng,
+                                            edge_sd(own, force, f0, level))
     return {"groups": groups, "effects": effects, "eps": eps}
 
 
