@@ -377,3 +377,26 @@ def test_the_benchs_own_force_extrapolation_grows_with_the_square_of_the_distanc
     rows = question_campaign(28, two=True)
     low = next(r for r in rows if r["question"] == "force_low")
     assert low["hidden"] == "creep_power_law+gap" and low["covered"], low
+
+
+def test_in_the_untested_direction_the_effect_sets_weights_move_toward_even(monkeypatch):
+    """A sigmoid modulus drop with a linear friction rise tested downhill only (5-min, two-effect campaign 320 of
+    band_questions): the held-out tests (downhill) gave a modulus law with μ_d = 0.77 ± 0.13 (truth 0.44) 98 % of the
+    mixture, and its uphill band 0.12–0.75 lay wholly below the truth 1.07.  Downhill scores do not rank how the sets
+    carry over uphill; with the weights halfway to even the band reaches the truth's side of 1."""
+    from rollaway.model.drum_model import DrumModel
+    from rollaway.uncertainty.draws import UNTESTED_DIRECTION_SHARE, mixture_parts
+    from tests.uncertainty.band_questions import campaign as question_campaign
+    import rollaway.identify.diagnose as dg
+    seen, original = [], dg.diagnose
+    monkeypatch.setattr(dg, "diagnose", lambda *a, **k: seen.append(original(*a, **k)) or seen[-1])
+    rows = question_campaign(320, two=True)
+    model = seen[0].model
+    tested = [w for w, _ in mixture_parts(model, "downhill")]
+    other = [w for w, _ in mixture_parts(model, "uphill")]
+    assert len(tested) >= 2 and sum(other) == pytest.approx(1.0)
+    assert other == pytest.approx([UNTESTED_DIRECTION_SHARE * w + (1 - UNTESTED_DIRECTION_SHARE) / len(tested)
+                                   for w in tested])
+    assert [w for w, _ in mixture_parts(DrumModel("paper"), "uphill")] == [1.0]
+    (row,) = [r for r in rows if r["question"] == "direction"]
+    assert row["p95"] >= 1.0 > row["p5"], row            # not wholly on the wrong side of the truth (1.07)

@@ -147,7 +147,8 @@ def model_draws(population, n: int, rng: np.random.Generator) -> dict | None:
     widened for questions beyond the tested range at the population's median values
     (:func:`rollaway.uncertainty.predictive.extrapolation`).
     """
-    from rollaway.uncertainty.draws import draw_values, own_record, torque_level_ratio, zero_torque_force
+    from rollaway.uncertainty.draws import (draw_values, mixture_parts, own_record, torque_level_ratio,
+                                            zero_torque_force)
     from rollaway.physics.drum import direction_sign
     from rollaway.uncertainty.predictive import edge_sd, extrapolation, model_error_draws
 
@@ -155,7 +156,7 @@ def model_draws(population, n: int, rng: np.random.Generator) -> dict | None:
     pred = model.predictive
     if model.covariance is None and not pred and not model.alternatives:
         return None
-    parts = [(1.0 - sum(w for w, _ in model.alternatives), model)] + list(model.alternatives)
+    parts = mixture_parts(model, population.directions[0])
     owner = rng.choice(len(parts), size=n, p=np.array([w for w, _ in parts]) / sum(w for w, _ in parts))
     groups, effects = [], {}
     for k, (_, m) in enumerate(parts):

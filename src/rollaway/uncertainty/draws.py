@@ -152,6 +152,23 @@ def torque_level_ratio(model: DrumModel, hand_force_N: float, tested_N, sign: fl
     return at_lo / at_f if at_f > 0.0 else float("inf")
 
 
+UNTESTED_DIRECTION_SHARE = 0.5   # [assumed] in a direction the bench did not test, the held-out weights (scores of the
+                                 # tested direction) keep this share; the rest is split evenly among the sets
+
+
+def mixture_parts(model: DrumModel, direction: str | None = None) -> list[tuple[float, DrumModel]]:
+    """[(weight, model)] of the predictive mixture: the calibrated model (1 − Σ alternatives' weights) and its
+    competing effect sets.  Facing a *direction* the bench did not test, the weights move toward even
+    (:data:`UNTESTED_DIRECTION_SHARE`): held-out tests of one direction rank how the sets fit it, not how they
+    carry over to the other, where they part most (μ_d against the clamp scale, one direction's confounding)."""
+    parts = [(1.0 - sum(w for w, _ in model.alternatives), model)] + list(model.alternatives)
+    dirs = model.predictive.get("tested_directions")
+    if direction and dirs and direction not in dirs and len(parts) > 1:
+        s, k = UNTESTED_DIRECTION_SHARE, len(parts)
+        parts = [(s * w + (1.0 - s) / k, m) for w, m in parts]
+    return parts
+
+
 def own_record(pred: dict, part: DrumModel) -> dict:
     """The predictive record whose model error a part of the mixture draws: *part*'s own (an alternative effect set
     carries its own held-out error, :func:`rollaway.uncertainty.bands.model_error`), else the saved model's *pred*."""
@@ -193,7 +210,7 @@ def rollaway_risk(model: DrumModel, *, hand_force_N: float, grade_pct: float, di
                                   duration_s=float(duration_s), zero_torque_force_N=f0, level_ratio=level)
     edge = edge_sd(pred, float(hand_force_N), f0, level)
     rng = np.random.default_rng(seed)
-    parts = [(1.0 - sum(w for w, _ in model.alternatives), model)] + list(model.alternatives)
+    parts = mixture_parts(model, direction)
     counts = np.floor(np.array([w for w, _ in parts]) * draws).astype(int)
     counts[0] += draws - counts.sum()
     owner = np.repeat(np.arange(len(parts)), counts)
@@ -257,7 +274,7 @@ def least_force_band(model: DrumModel, grades_pct, direction: str, occupants: in
     t0 = model.params.initial_drum_temp_C if initial_temp_C is None else float(initial_temp_C)
     factor, _ = extrapolation(model.predictive, hand_force_N=float(np.mean(model.predictive.get(
         "tested_hand_force_N", [250.0, 250.0]))), direction=direction, initial_temp_C=t0, duration_s=duration_s)
-    parts = [(1.0 - sum(w for w, _ in model.alternatives), model)] + list(model.alternatives)
+    parts = mixture_parts(model, direction)
     counts = np.floor(np.array([w for w, _ in parts]) * draws).astype(int)
     counts[0] += draws - counts.sum()
     forces = []
