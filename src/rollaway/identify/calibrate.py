@@ -177,6 +177,18 @@ def calibrate(data: Measurements, effects=(), params=None, *, free=None, start: 
     taken as exact (the old behaviour, for comparisons only).  Samples are weighted by the noise
     model attached to *data* (``torque_sigma_Nm``, ``temp_sigma_C``) or one estimated from it.
     """
+    from rollaway.identify import memo
+    k = memo.key(data, effects, params, dict(free=free, start=start, model=model, per_test=per_test,
+                                             statistics=statistics, max_iterations=max_iterations))
+    kept = memo.lookup(k)
+    if kept is not None:
+        return kept
+    fit = _calibrate(data, effects, params, free, start, model, per_test, statistics, max_iterations)
+    memo.store(k, fit)
+    return fit
+
+
+def _calibrate(data, effects, params, free, start, model, per_test, statistics, max_iterations) -> FitResult:
     model = model or BenchModel(params, effects)
     init = model.initial_values()
     families = model.per_test_parameters() if per_test else []

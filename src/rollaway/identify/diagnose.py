@@ -29,6 +29,7 @@ from rollaway.identify.coarse import MAX_WINDOW_S, coarsen
 from rollaway.identify.drum import DrumCalibration, calibrate_drum, free_needed, predictive_covariance, recheck
 from rollaway.identify.diagnosis import Diagnosis
 from rollaway.identify.fitting import single_blas_thread
+from rollaway.identify.memo import memoised
 from rollaway.identify.intervals import covariance_variances, ess_inflation, mixture_variances, restate
 from rollaway.bench.measurements import Measurements
 from rollaway.bench.noise import Noise, noise_estimate, sample_sigma
@@ -56,6 +57,7 @@ def channel_noise(data: Measurements, fit: FitResult, noise_torque_Nm=None, nois
 
 # -- the decision ---------------------------------------------------------------------------
 @single_blas_thread
+@memoised
 def diagnose(data: Measurements, params=None, effects=None, *, noise_torque_Nm: float | None = None,
              noise_temp_C: float | None = None, max_effects: int = MAX_EFFECTS, free=None, fix=()) -> Diagnosis:
     """Calibrate the user's drum, then select effects from *effects* (default: the catalogue plus

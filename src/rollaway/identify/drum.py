@@ -267,7 +267,7 @@ def free_needed(drum: DrumCalibration, data: Measurements, effects: list, fit: F
     if not held or fit.jacobian is None:
         return None
     best = calibrate(data, effects, DrumPlan(drum.params, drum.free + tuple(held)), start=fit.values)
-    while held:
+    while len(held) > 1:          # with one held left, holding it is *fit* itself: the test below decides
         trials = list(zip(fit_all(data, [(effects, DrumPlan(drum.params, drum.free + tuple(h for h in held if h != n)),
                                           dict(start={k: v for k, v in best.values.items() if k != n})) for n in held]),
                           held))

@@ -73,8 +73,29 @@ def run_fits(data, calls: list[tuple]) -> list:
 
 def fit_all(data, jobs: list[tuple]) -> list:
     """``[calibrate(data, effects, params, **kwargs) for effects, params, kwargs in jobs]`` by :func:`run_fits`."""
+    from rollaway.identify import memo
     from rollaway.identify.calibrate import calibrate
-    return run_fits(data, [(calibrate, (effects, params), kwargs) for effects, params, kwargs in jobs])
+    keys = [memo.key(data, effects, params, _full(kwargs)) for effects, params, kwargs in jobs]
+    out = [memo.lookup(k) for k in keys]
+    todo = {}                                  # a fit kept already is not sent; one asked twice is sent once
+    for i, (k, fit) in enumerate(zip(keys, out)):
+        if fit is None:
+            todo.setdefault(i if k is None else k[0], []).append(i)
+    first = [idx[0] for idx in todo.values()]
+    done = run_fits(data, [(calibrate, jobs[i][:2], jobs[i][2]) for i in first])
+    for idx, fit in zip(todo.values(), done):
+        memo.store(keys[idx[0]], fit)
+        out[idx[0]] = fit
+        for i in idx[1:]:
+            out[i] = memo.lookup(keys[i]) or fit
+    return out
+
+
+def _full(kwargs: dict) -> dict:
+    """*kwargs* of a :func:`~rollaway.identify.calibrate.calibrate` call with its defaults filled in (as
+    calibrate keys its own calls)."""
+    return dict(dict(free=None, start=None, model=None, per_test=True, statistics=True, max_iterations=None),
+                **kwargs)
 
 
 __all__ = ["cores", "fit_all", "run_fits"]

@@ -1,0 +1,113 @@
+"""Fits computed once per diagnosis.
+
+A diagnosis asks for some fits more than once: the pair refitted with the brake parameters it needs is the pair
+the partner test compares; the first effect alone is fitted by the elimination step and again when the pair is
+ordered; the first effect re-formed is fitted for the partial form and again for the shape rivals.  Inside
+:func:`fit_memo` each :func:`~rollaway.identify.calibrate.calibrate` call is looked up by everything that
+determines its result — the data set (the object, with its noise model), the effects (a shape-free effect by its
+base and knots), the parameter set and its freed brake parameters, the start values (every number, per-test arrays
+byte for byte) and the options — and a repeated call gets a copy of the first one's result: the same numbers,
+since each fit is deterministic.  Outside :func:`fit_memo` nothing is kept.
+"""
+from __future__ import annotations
+
+import copy
+import functools
+from contextlib import contextmanager
+
+import numpy as np
+
+_MEMO: dict | None = None        # key → (fit, objects the key refers to by identity, kept alive)
+
+
+@contextmanager
+def fit_memo():
+    """Keep every fit made inside the block for repeated calls (nested blocks share the outer one's)."""
+    global _MEMO
+    outer = _MEMO
+    if outer is None:
+        _MEMO = {}
+    try:
+        yield
+    finally:
+        if outer is None:
+            _MEMO = None
+
+
+def memoised(func):
+    """*func* run inside :func:`fit_memo`."""
+    @functools.wraps(func)
+    def wrapper(*args, **kwargs):
+        with fit_memo():
+            return func(*args, **kwargs)
+    return wrapper
+
+
+def _effect_key(e, keep: list):
+    from rollaway.effects import available_effects
+    from rollaway.effects.shape_free import is_shape_free
+    if isinstance(e, str):
+        return ("name", e)
+    if is_shape_free(e):
+        return ("shape-free", e.base, tuple(float(k) for k in e.knots), e.hook, e.covariate)
+    cls = e if isinstance(e, type) else type(e)
+    if available_effects().get(getattr(cls, "name", None)) is not cls:
+        keep.append(e)
+        return ("object", id(e))           # not the registered class: this very object
+    return ("class", id(cls))
+
+
+def _value_key(v):
+    if v is None:
+        return None
+    if isinstance(v, np.ndarray):
+        return (v.dtype.str, v.shape, v.tobytes())
+    if isinstance(v, (int, float, np.number, bool, np.bool_)):
+        return float(v)
+    raise TypeError(f"no memo key for {type(v).__name__}")
+
+
+def key(data, effects, params, kwargs: dict):
+    """The memo's key of ``calibrate(data, effects, params, **kwargs)``, or None (no memo, or a call it does not
+    keep: one with its own model)."""
+    if _MEMO is None or kwargs.get("model") is not None:
+        return None
+    keep = [data, data.torque_sigma_Nm, data.temp_sigma_C]
+    try:
+        eff = tuple(_effect_key(e, keep) for e in effects)
+        start = tuple(sorted((k, _value_key(v)) for k, v in (kwargs.get("start") or {}).items()))
+        opts = tuple(sorted((k, _value_key(v)) for k, v in kwargs.items() if k not in ("start", "free", "model")))
+    except Exception:        # noqa: BLE001 - an effect or value the key cannot describe: no memo for this call
+        return None
+    plan = (getattr(params, "params", params), tuple(getattr(params, "free", ()) or ()), type(params).__name__)
+    keep.append(plan[0])
+    free = kwargs.get("free")
+    return (id(data), id(data.torque_sigma_Nm), id(data.temp_sigma_C), eff,
+            (id(plan[0]) if not isinstance(plan[0], (str, type(None))) else plan[0]), plan[1], plan[2],
+            None if free is None else tuple(sorted(free)),
+            start, opts), keep
+
+
+def lookup(k):
+    """A copy of the fit kept under *k* (from :func:`key`), or None."""
+    if k is None or _MEMO is None:
+        return None
+    hit = _MEMO.get(k[0])
+    return None if hit is None else _copy(hit[0])
+
+
+def store(k, fit) -> None:
+    """Keep a copy of *fit* under *k* (from :func:`key`; nothing when *k* is None)."""
+    if k is not None and _MEMO is not None:
+        _MEMO[k[0]] = (_copy(fit), k[1])
+
+
+def _copy(fit):
+    """A copy whose later changes (its covariance, notes in ``fit_info``, warnings) stay its own."""
+    out = copy.copy(fit)
+    out.fit_info = dict(fit.fit_info)
+    out.warnings = list(fit.warnings)
+    return out
+
+
+__all__ = ["fit_memo", "key", "lookup", "memoised", "store"]
