@@ -43,47 +43,57 @@ def size_parameter(effect) -> str | None:
     return glob[0] if len(glob) == 1 and not any(p.per_test for p in effect.parameters) else None
 
 
-def detection_limits(data, base, threshold: float = 10.0, effects=None) -> list[dict]:
-    """For each effect (default: every available one with a size parameter), the least size these *data* find 4
-    times in 5 against the calibrated drum *base* (a :class:`~rollaway.identify.calibrate.FitResult`):
-    ``{"effect", "parameter", "unit", "least_size", "typical", "ratio" (least/typical), "description"}``, the
-    most sensitive (smallest ratio) first.  An effect whose column the drum imitates wholly gets ``inf``."""
+def effect_columns(data, fit, effects=None):
+    """For each effect not in *fit*'s model that has a size parameter (default: every available one), its size
+    column against *fit*'s free parameters, rows per √ of each channel's residual variance factor (≥ 1):
+    yields ``(name, effect, size spec, column, columns of fit.names, k)`` (k: the effect's global parameters).
+    The column is taken at the effect's neutral size, its other parameters at their typical values."""
     from rollaway.effects import available_effects
     from rollaway.identify.calibrate import evaluate, jacobian_at
     from rollaway.identify.model import DrumPlan
 
-    if base.jacobian is None:
-        return []
-    plan = DrumPlan(base.model.params, base.model.free)
-    names = list(base.names)
-    n_rows = base.n_temp + base.n_torque
-    phi = np.concatenate([np.full(base.n_temp, max(base.variance_factor.get("temperature", 1.0), 1.0)),
-                          np.full(base.n_torque, max(base.variance_factor.get("torque", 1.0), 1.0))])
-    out = []
+    if fit.jacobian is None:
+        return
+    plan = DrumPlan(fit.model.params, fit.model.free)
+    names = list(fit.names)
+    have = {e.name for e in fit.model.effects}
+    phi = np.concatenate([np.full(fit.n_temp, max(fit.variance_factor.get("temperature", 1.0), 1.0)),
+                          np.full(fit.n_torque, max(fit.variance_factor.get("torque", 1.0), 1.0))])
     for name, cls in (effects or available_effects()).items():
+        if name in have:
+            continue
         eff = cls()
         size = size_parameter(eff)
         if size is None:
             continue
         spec = next(p for p in eff.parameters if p.name == size)
-        values = {**base.values, **{f"{name}.{p.name}": (p.neutral if p.name == size else p.typical)
-                                    for p in eff.parameters}}
+        values = {**fit.values, **{f"{name}.{p.name}": (p.neutral if p.name == size else p.typical)
+                                   for p in eff.parameters}}
         try:
-            fit = evaluate(data, [eff], plan, values)
-            jac = jacobian_at(fit, names + [f"{name}.{size}"])
-        except Exception:        # noqa: BLE001 — a plugin that cannot be evaluated here has no limit to report
+            at = evaluate(data, list(fit.model.effects) + [eff], plan, values)
+            jac = jacobian_at(at, names + [f"{name}.{size}"])
+        except Exception:        # noqa: BLE001 — a plugin that cannot be evaluated here has no column
             continue
         if jac.shape[0] != phi.size or not np.all(np.isfinite(jac)):
             continue
         jac = jac / np.sqrt(phi)[:, None]
-        col, rest = jac[:, -1], jac[:, :-1]
+        yield name, eff, spec, jac[:, -1], jac[:, :-1], sum(1 for p in eff.parameters if not p.per_test)
+
+
+def detection_limits(data, base, threshold: float = 10.0, effects=None) -> list[dict]:
+    """For each effect (default: every available one with a size parameter), the least size these *data* find 4
+    times in 5 against the calibrated drum *base* (a :class:`~rollaway.identify.calibrate.FitResult`):
+    ``{"effect", "parameter", "unit", "least_size", "typical", "ratio" (least/typical), "description"}``, the
+    most sensitive (smallest ratio) first.  An effect whose column the drum imitates wholly gets ``inf``."""
+    n_rows = base.n_temp + base.n_torque
+    out = []
+    for name, eff, spec, col, rest, k in effect_columns(data, base, effects):
         perp = col - rest @ np.linalg.lstsq(rest, col, rcond=None)[0] if rest.shape[1] else col
         norm = float(np.linalg.norm(perp))
-        k = sum(1 for p in eff.parameters if not p.per_test)
         need = math.sqrt(threshold + k * math.log(n_rows)) + POWER_Z
         least = SELECTION_FACTOR * need / norm if norm > 0 else math.inf
         typical = abs(spec.typical) if spec.typical else math.nan
-        out.append({"effect": name, "parameter": size, "unit": spec.unit, "least_size": least,
+        out.append({"effect": name, "parameter": spec.name, "unit": spec.unit, "least_size": least,
                     "typical": spec.typical, "ratio": least / typical if typical == typical and typical > 0 else math.inf,
                     "description": spec.description})
     return sorted(out, key=lambda r: r["ratio"])
