@@ -85,18 +85,63 @@ def detection_limits(data, base, threshold: float = 10.0, effects=None) -> list[
     times in 5 against the calibrated drum *base* (a :class:`~rollaway.identify.calibrate.FitResult`):
     ``{"effect", "parameter", "unit", "least_size", "typical", "ratio" (least/typical), "description"}``, the
     most sensitive (smallest ratio) first.  An effect whose column the drum imitates wholly gets ``inf``."""
-    n_rows = base.n_temp + base.n_torque
     out = []
     for name, eff, spec, col, rest, k in effect_columns(data, base, effects):
-        perp = col - rest @ np.linalg.lstsq(rest, col, rcond=None)[0] if rest.shape[1] else col
-        norm = float(np.linalg.norm(perp))
-        need = math.sqrt(threshold + k * math.log(n_rows)) + POWER_Z
-        least = SELECTION_FACTOR * need / norm if norm > 0 else math.inf
-        typical = abs(spec.typical) if spec.typical else math.nan
+        least, _ = _least_size(col, rest, k, base.n_temp + base.n_torque, threshold)
         out.append({"effect": name, "parameter": spec.name, "unit": spec.unit, "least_size": least,
-                    "typical": spec.typical, "ratio": least / typical if typical == typical and typical > 0 else math.inf,
-                    "description": spec.description})
+                    "typical": spec.typical, "ratio": _ratio(least, spec), "description": spec.description})
     return sorted(out, key=lambda r: r["ratio"])
+
+
+def _least_size(col, rest, k: int, n_rows: int, threshold: float) -> tuple[float, np.ndarray]:
+    """(least size found 4 times in 5, β): β the fitted parameters' least-squares response to the size column."""
+    beta = np.linalg.lstsq(rest, col, rcond=None)[0] if rest.shape[1] else np.zeros(0)
+    norm = float(np.linalg.norm(col - rest @ beta if rest.shape[1] else col))
+    need = math.sqrt(threshold + k * math.log(n_rows)) + POWER_Z
+    return (SELECTION_FACTOR * need / norm if norm > 0 else math.inf), beta
+
+
+def _ratio(least: float, spec) -> float:
+    typical = abs(spec.typical) if spec.typical else math.nan
+    return least / typical if typical == typical and typical > 0 else math.inf
+
+
+def hidden_shifts(data, fit, threshold: float = 10.0, effects=None) -> list[dict]:
+    """What *fit*'s values assume: for each effect outside its model that these *data* could miss at the size real
+    drums show (least size found 4 times in 5 above the typical size, :func:`detection_limits`' rule), the values
+    of the fitted global parameters had the data held that effect at its typical size.
+
+    Linear: data that hold an effect of size a are fitted without it at θ̂ = θ* + β·a, β the least-squares
+    response of the free parameters to the effect's size column (:func:`effect_columns`); so θ* = θ̂ − β·a.
+    Returns ``[{"effect", "parameter", "typical", "unit", "ratio", "values": {name: θ*}}]``, largest ratio first;
+    the fit's intervals are those of the model without these effects (they are not widened by them)."""
+    out = []
+    for name, eff, spec, col, rest, k in effect_columns(data, fit, effects):
+        least, beta = _least_size(col, rest, k, fit.n_temp + fit.n_torque, threshold)
+        ratio = _ratio(least, spec)
+        if not ratio > 1.0 or not beta.size:
+            continue
+        out.append({"effect": name, "parameter": spec.name, "typical": spec.typical, "unit": spec.unit,
+                    "ratio": ratio, "values": {n: float(fit.values[n]) - float(b) * spec.typical
+                                               for n, b in zip(fit.names, beta)}})
+    return sorted(out, key=lambda r: -r["ratio"])
+
+
+def hidden_words(fit, shifts: list[dict], names=("mu_drum", "heat_transfer_W_m2K")) -> str:
+    """One line: the effects the calibrated values assume absent, and where μ_d and h (*names*) would be with each
+    at its typical size (only shifts beyond the parameter's own 95 % interval; JSON ``hidden_effects`` has all)."""
+    parts = []
+    for r in shifts:
+        moved = [f"{n} {v:.4g}" for n, v in r["values"].items() if n in names and n in fit.estimates
+                 and not fit.estimates[n].ci95[0] <= v <= fit.estimates[n].ci95[1]]
+        if moved:
+            parts.append(f"{r['effect']} at {r['typical']:.3g}{'' if r['unit'] in ('–', '') else ' ' + r['unit']}: "
+                         + ", ".join(moved))
+    if not parts:
+        return ""
+    return ("The calibrated values assume no effect these data could miss at the size real drums show; with one "
+            "at its typical size they would be (rollaway.identify.detection.hidden_shifts): " + "; ".join(parts)
+            + " — read the intervals as conditional on their absence, or test where they show.")
 
 
 def blind(limits: list[dict]) -> list[str]:
@@ -117,4 +162,5 @@ def limits_words(limits: list[dict], top: int = 4) -> str:
                f"(more forces, both directions, hotter starts, longer holds or denser samples)." if missed else ""))
 
 
-__all__ = ["POWER_Z", "SELECTION_FACTOR", "blind", "detection_limits", "limits_words", "size_parameter"]
+__all__ = ["POWER_Z", "SELECTION_FACTOR", "blind", "detection_limits", "effect_columns", "hidden_shifts", "hidden_words",
+           "limits_words", "size_parameter"]

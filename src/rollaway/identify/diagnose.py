@@ -33,7 +33,7 @@ from rollaway.identify.memo import memoised
 from rollaway.identify.intervals import covariance_variances, ess_inflation, mixture_variances, restate
 from rollaway.bench.measurements import Measurements
 from rollaway.bench.noise import Noise, noise_estimate, sample_sigma
-from rollaway.identify.detection import detection_limits, limits_words
+from rollaway.identify.detection import detection_limits, hidden_shifts, hidden_words, limits_words
 from rollaway.identify.diagnose_words import describe_residual, no_candidate_words, noise_words, structure_words
 from rollaway.identify.partner import own_evidence
 from rollaway.identify.shape import form_rivals, other_form_rivals, shape_rivals
@@ -247,9 +247,12 @@ def diagnose(data: Measurements, params=None, effects=None, *, noise_torque_Nm: 
     drum.update(refined)
     refined.fit_info["calibration"] = drum.record()
     ev.append(_interval_words(refined, drum, alts))
+    hidden = hidden_shifts(data, refined)
+    if hidden_words(refined, hidden):
+        ev.append(hidden_words(refined, hidden))
     return Diagnosis(data, paper, base, nq, nt, first_cands, verdict, indist, refined,
                      remaining, struct, base_cv, ev, selected, steps, shape, drum, rivalry + weak, diagnose,
-                     detection=limits)
+                     detection=limits, hidden=hidden)
 
 
 def _interval_words(fit: FitResult, drum: DrumCalibration, alts) -> str:

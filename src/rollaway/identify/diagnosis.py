@@ -46,6 +46,7 @@ class Diagnosis(CalibratedModelMixin):
     alternatives: list[dict] = field(default_factory=list)  # effect sets the data cannot rule out (ambiguity.py)
     procedure: Callable | None = field(default=None, repr=False, compare=False)   # what made it (for again)
     detection: list[dict] = field(default_factory=list)    # with "none": the least size of each effect found (detection.py)
+    hidden: list[dict] = field(default_factory=list)       # effects the data could miss, and the values with them
 
     def as_dict(self) -> dict:
         def rm(f):
@@ -65,7 +66,7 @@ class Diagnosis(CalibratedModelMixin):
                 "refined": {"effects": self.refined.effects, **rm(self.refined)},
                 "remaining_structure": self.remaining_structure, "structure": self.structure,
                 "steps": self.steps, "shape": self.shape, "evidence": self.evidence,
-                "detection_limits": self.detection,
+                "detection_limits": self.detection, "hidden_effects": self.hidden,
                 "drum": None if self.drum is None else self.drum.as_dict(),
                 "predictive": {**(self.refined.fit_info.get("predictive") or {}),
                                "alternatives": [{"effects": f.effects, "weight": w}
