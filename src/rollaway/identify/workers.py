@@ -51,7 +51,27 @@ def _call(i: int):
 def run_fits(data, calls: list[tuple]) -> list:
     """``[fn(data, *args, **kwargs) for fn, args, kwargs in calls]``, each *fn* returning one fit, on several cores
     where that is possible (see the module docstring).  The workers inherit *data* and *calls* (only each call's
-    index is sent) and send the fit back."""
+    index is sent) and send the fit back.  Calibrations kept by :mod:`rollaway.identify.memo` are not sent, one
+    asked twice is sent once, and what the workers send back is kept (a worker's own memo dies with it)."""
+    from rollaway.identify import memo
+    from rollaway.identify.calibrate import calibrate
+    keys = [memo.key(data, args[0], args[1], _full(kwargs)) if fn is calibrate and len(args) == 2 else None
+            for fn, args, kwargs in calls]
+    out = [memo.lookup(k) for k in keys]
+    todo: dict = {}
+    for i, (k, fit) in enumerate(zip(keys, out)):
+        if fit is None:
+            todo.setdefault(i if k is None else k[0], []).append(i)
+    done = _run(data, [calls[idx[0]] for idx in todo.values()])
+    for idx, fit in zip(todo.values(), done):
+        memo.store(keys[idx[0]], fit)
+        out[idx[0]] = fit
+        for i in idx[1:]:
+            out[i] = memo.lookup(keys[i]) or fit
+    return out
+
+
+def _run(data, calls: list[tuple]) -> list:
     global _CALLS
     n = min(cores(), len(calls))
     if (n < 2 or "fork" not in mp.get_all_start_methods() or mp.current_process().daemon
@@ -73,22 +93,8 @@ def run_fits(data, calls: list[tuple]) -> list:
 
 def fit_all(data, jobs: list[tuple]) -> list:
     """``[calibrate(data, effects, params, **kwargs) for effects, params, kwargs in jobs]`` by :func:`run_fits`."""
-    from rollaway.identify import memo
     from rollaway.identify.calibrate import calibrate
-    keys = [memo.key(data, effects, params, _full(kwargs)) for effects, params, kwargs in jobs]
-    out = [memo.lookup(k) for k in keys]
-    todo = {}                                  # a fit kept already is not sent; one asked twice is sent once
-    for i, (k, fit) in enumerate(zip(keys, out)):
-        if fit is None:
-            todo.setdefault(i if k is None else k[0], []).append(i)
-    first = [idx[0] for idx in todo.values()]
-    done = run_fits(data, [(calibrate, jobs[i][:2], jobs[i][2]) for i in first])
-    for idx, fit in zip(todo.values(), done):
-        memo.store(keys[idx[0]], fit)
-        out[idx[0]] = fit
-        for i in idx[1:]:
-            out[i] = memo.lookup(keys[i]) or fit
-    return out
+    return run_fits(data, [(calibrate, (effects, params), kwargs) for effects, params, kwargs in jobs])
 
 
 def _full(kwargs: dict) -> dict:

@@ -1,0 +1,66 @@
+"""Fits kept for one diagnosis (rollaway.identify.memo): a repeated call returns the first call's numbers without
+fitting again, a call that differs in anything that sets its result is fitted, and nothing is kept outside."""
+import numpy as np
+import pytest
+
+from rollaway.effects import get_effect
+from rollaway.identify import fitting, memo
+from rollaway.identify.calibrate import calibrate
+from rollaway.identify.shape import flexible_effect
+from rollaway.identify.workers import fit_all
+from tests.identify.bench_generator import generate
+
+
+@pytest.fixture(scope="module")
+def data():
+    return generate(["creep_exponential"], sampling="5min", seed=21, forces=np.linspace(180.0, 360.0, 3))
+
+
+@pytest.fixture
+def solves(monkeypatch):
+    count = {"n": 0}
+    orig = fitting.Problem.solve
+
+    def counted(self, *a, **k):
+        count["n"] += 1
+        return orig(self, *a, **k)
+    monkeypatch.setattr(fitting.Problem, "solve", counted)
+    return count
+
+
+def test_a_repeated_fit_is_kept_and_a_different_one_is_not(data, solves):
+    with memo.fit_memo():
+        a = calibrate(data, ["lining_creep"])
+        b = calibrate(data, ["lining_creep"])
+        assert solves["n"] == 1 and b is not a and b.values.keys() == a.values.keys()
+        assert all(np.array_equal(a.values[k], b.values[k]) for k in a.values) and a.bic == b.bic
+        b.fit_info["note"] = 1                       # a copy's notes stay its own
+        assert "note" not in a.fit_info and "note" not in calibrate(data, ["lining_creep"]).fit_info
+        calibrate(data, ["lining_creep"], start={"mu_drum": 0.3})          # another start
+        calibrate(data, ["lining_creep"], max_iterations=3)                # another budget
+        calibrate(data, ["cable_relaxation"])                              # another effect
+        calibrate(data.subset(np.ones(len(data), bool)), ["lining_creep"])  # another data set
+        assert solves["n"] == 5
+        knots = [flexible_effect(get_effect("lining_creep"), data.time_s) for _ in range(2)]
+        calibrate(data, [knots[0]])
+        calibrate(data, [knots[1]])                  # the same base and knots, another class object: kept
+        assert solves["n"] == 6
+        calibrate(data, [flexible_effect(get_effect("lining_creep"), data.time_s[::2] * 0.7)])   # other knots
+        assert solves["n"] == 7
+    calibrate(data, ["lining_creep"])
+    calibrate(data, ["lining_creep"])
+    assert solves["n"] == 9                          # outside: nothing kept
+
+
+def test_a_batch_sends_what_is_not_kept_once(data, monkeypatch):
+    sent = []
+    from rollaway.identify import workers
+    orig = workers._run
+    monkeypatch.setattr(workers, "_run", lambda d, calls: sent.append(len(calls)) or orig(d, calls))
+    with memo.fit_memo():
+        first = calibrate(data, ["lining_creep"])
+        out = fit_all(data, [(["lining_creep"], None, {}), (["cable_relaxation"], None, {}),
+                             (["cable_relaxation"], None, {})])
+        assert sent == [1]                           # the kept fit is not sent, the twin is sent once
+        assert out[0].bic == first.bic and out[1].bic == out[2].bic and out[1] is not out[2]
+        assert fit_all(data, [(["cable_relaxation"], None, {})])[0].bic == out[1].bic and sent == [1, 0]
