@@ -119,7 +119,7 @@ def hidden_shifts(data, fit, threshold: float = 10.0, effects=None) -> list[dict
     for name, eff, spec, col, rest, k in effect_columns(data, fit, effects):
         least, beta = _least_size(col, rest, k, fit.n_temp + fit.n_torque, threshold)
         ratio = _ratio(least, spec)
-        if not ratio > 1.0 or not beta.size:
+        if not ratio > 1.0 or not beta.size or not spec.typical:     # no typical size: nothing to state
             continue
         out.append({"effect": name, "parameter": spec.name, "typical": spec.typical, "unit": spec.unit,
                     "ratio": ratio, "values": {n: float(fit.values[n]) - float(b) * spec.typical
