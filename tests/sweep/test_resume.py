@@ -20,10 +20,16 @@ duration_s = [30]
 N_POINTS = 18 * 2 * 2 * 2
 
 
+def _sigint_as_in_a_terminal():
+    """A shell starts background jobs with SIGINT ignored, and Python keeps it ignored: undo that."""
+    signal.signal(signal.SIGINT, signal.SIG_DFL)
+
+
 def start(spec, out):
     cmd = [sys.executable, "-c", "import sys; from rollaway.cli import main; sys.exit(main())",
            "sweep", str(spec), "--out", str(out), "--workers", "2", "--quiet", "--no-plots"]
-    return subprocess.Popen(cmd, stdout=subprocess.PIPE, stderr=subprocess.PIPE, text=True, start_new_session=True)
+    return subprocess.Popen(cmd, stdout=subprocess.PIPE, stderr=subprocess.PIPE, text=True, start_new_session=True,
+                            preexec_fn=_sigint_as_in_a_terminal)
 
 
 def journal_ids(out):
