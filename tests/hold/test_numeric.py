@@ -81,3 +81,18 @@ def test_self_locking_is_its_own_outcome():
     v = hold.analytic_verdict(DrumModel("paper").replace_params(mu_drum=1.2), hand_force_N=300, duration_s=60,
                               **CASE)
     assert v.outcome == "self_locking" and not v.holds and v.least_hand_force_N is None
+
+
+def test_a_drawn_gap_among_the_values_is_the_gap_argument():
+    """Uncertainty draws hand the held brake parameters over as values: a gap there acts as eq. (16b)'s l_g."""
+    from rollaway.hold.numeric import MarginFunction
+    from rollaway.model.drum_model import DrumModel
+    from rollaway.model.parameters import paper
+    model = DrumModel(paper())
+    gaps = np.array([0.0, 5e-4, 1e-3])
+    by_values = MarginFunction(model, np.full(3, 300.0), 1.0, 2000.0, None, None, 150.0, values={"gap_m": gaps})
+    by_arg = MarginFunction(model, np.full(3, 300.0), 1.0, 2000.0, None, gaps, 150.0)
+    t = np.array([0.0, 600.0, 3600.0])[:, None]
+    a, b = by_values(t, np.arange(3)[None, :]), by_arg(t, np.arange(3)[None, :])
+    np.testing.assert_array_equal(a, b)
+    assert np.all(np.diff(a, axis=1) < 0)           # a wider gap, a softer clamp: less margin

@@ -155,3 +155,23 @@ def test_untested_direction_band_covers_the_truth():
         p = risk.brake_margin_percentiles
         covered += p["p5"] <= truth <= p["p95"]
     assert covered >= len(cases) - 1
+
+
+def test_the_gap_is_held_with_its_spread_unless_freed_or_its_effect_is_fitted():
+    """gap_m is never freed by the automatic choice (torque logs cannot tell it from μ_d): it is held with its
+    spread, which widens μ_d's interval; --free frees it; a fitted installation_gap effect replaces its prior."""
+    from rollaway.effects import get_effect
+    from rollaway.identify.calibrate import calibrate
+    from rollaway.identify.drum import predictive_covariance
+    data = generate(seed=21)
+    dc = calibrate_drum(data)
+    e = dc.entries["gap_m"]
+    assert e.status == "fixed" and e.value == 0.0 and e.prior_sd == pytest.approx(6e-4)
+    assert e.confounded_with == ["mu_drum"] and "gap_m" not in dc.free
+    with_gap = predictive_covariance(dc.fit, dc.fixed_priors())
+    without = predictive_covariance(dc.fit, {k: v for k, v in dc.fixed_priors().items() if k != "gap_m"})
+    assert with_gap.stderr["mu_drum"] > 2.0 * without.stderr["mu_drum"]
+    assert with_gap.stderr["gap_m"] <= 6e-4
+    fit = calibrate(data, [get_effect("installation_gap")], dc.plan, start=dc.fit.values)
+    assert "gap_m" not in predictive_covariance(fit, dc.fixed_priors()).names
+    assert "gap_m" in calibrate_drum(data, free=["mu_drum", "gap_m"]).free

@@ -54,3 +54,19 @@ def test_what_is_not_a_covariance_is_one_line_naming_the_entry(tmp_path, run_cli
     assert needle in str(exc.value) and str(path) in str(exc.value)
     code, _, err = run_cli("hold", "--grade-pct", 20, "--hand-force-N", 300, "--params", path, "--uncertainty", 20)
     assert code == 2 and needle in err and len(err.strip().splitlines()) == 1 and "Traceback" not in err
+
+
+def test_conditional_is_the_gaussian_conditional_of_draws():
+    """Covariance.conditional(given) is the covariance of the others with *given* held: checked against the
+    regression residuals of a million draws (not against the Schur formula it uses)."""
+    from rollaway.model.covariance import Covariance
+    rng = np.random.default_rng(3)
+    a = rng.normal(size=(4, 4))
+    cov = Covariance(("a", "b", "c", "d"), a @ a.T + 0.1 * np.eye(4))
+    cond = cov.conditional(("b", "d"))
+    assert cond.names == ("a", "c")
+    x = rng.multivariate_normal(np.zeros(4), cov.matrix, size=1_000_000)
+    g, o = x[:, [1, 3]], x[:, [0, 2]]
+    resid = o - g @ np.linalg.lstsq(g, o, rcond=None)[0]
+    np.testing.assert_allclose(cond.matrix, np.cov(resid.T), rtol=0.02, atol=1e-3)
+    assert cov.conditional(("zz",)) is cov

@@ -35,6 +35,9 @@ class MarginFunction:
                  heat_transfer_W_m2K=None, values: dict | None = None):
         p = model.params
         self.model = model
+        values = dict(values or {})
+        if gap_m is None and "gap_m" in values:        # a held gap drawn with the other brake parameters
+            gap_m = values.pop("gap_m")
         shape = np.broadcast_shapes(*(np.shape(x) for x in (hand_force_N, sign, t_req_Nm, mu_drum, gap_m,
                                                              initial_temp_C)))
         arr = lambda x, default: np.broadcast_to(np.asarray(default if x is None else x, float), shape).ravel()  # noqa
@@ -45,7 +48,7 @@ class MarginFunction:
         self.gap = arr(gap_m, p.gap_m)
         self.t0 = arr(initial_temp_C, p.initial_drum_temp_C)
         self.h = arr(heat_transfer_W_m2K, p.heat_transfer_W_m2K)
-        self.values = {k: arr(v, 0.0) for k, v in (values or {}).items()}   # per-point effect values (draws)
+        self.values = {k: arr(v, 0.0) for k, v in values.items()}   # per-point effect values (draws)
         self.shape = shape
 
     def __len__(self) -> int:

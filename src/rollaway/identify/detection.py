@@ -114,7 +114,8 @@ def hidden_shifts(data, fit, threshold: float = 10.0, effects=None) -> list[dict
     Linear: data that hold an effect of size a are fitted without it at θ̂ = θ* + β·a, β the least-squares
     response of the free parameters to the effect's size column (:func:`effect_columns`); so θ* = θ̂ − β·a.
     Returns ``[{"effect", "parameter", "typical", "unit", "ratio", "values": {name: θ*}}]``, largest ratio first;
-    the fit's intervals are those of the model without these effects (they are not widened by them)."""
+    the fit's intervals are those of the model without these effects (they are not widened by them, except for the
+    installation gap, whose spread the drum calibration counts as the held brake parameter ``gap_m``)."""
     out = []
     for name, eff, spec, col, rest, k in effect_columns(data, fit, effects):
         least, beta = _least_size(col, rest, k, fit.n_temp + fit.n_torque, threshold)

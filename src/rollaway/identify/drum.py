@@ -72,7 +72,8 @@ class ParameterStatus:
             tail = f"  (assumed {self.assumed_value:.4g}; stands for the {p.stands_for})"
         else:
             head = f"{self.status:<13} {self.value:.5g} {p.unit}"
-            tail = f"  — {self.reason}" + (f" (kept as ±{self.prior_sd:.2g} {p.unit} in the bands [assumed])"
+            where = "in the bands" if p.drawn else "in the parameter intervals, held in the bands"
+            tail = f"  — {self.reason}" + (f" (kept as ±{self.prior_sd:.2g} {p.unit} {where} [assumed])"
                                             if self.prior_sd else "")
         return f"  {self.name:<21} {head}{tail}"
 
@@ -171,6 +172,10 @@ def calibrate_drum(data: Measurements, params=None, *, free=None, fix=(), start:
             fixed(n, "fixed by you", "held at its value by --fix")
         elif n == "ambient_temp_C" and logged:
             fixed(n, "logged", "read from the bench's ambient column (its mean is the model's ambient)", prior=False)
+        elif not FREE_PARAMETERS[n].automatic and not free:
+            fixed(n, "fixed", f"held at the set's value: torque and temperature logs cannot tell it from "
+                              f"{', '.join(FREE_PARAMETERS[n].confounded_with)} (free it with --free)",
+                  FREE_PARAMETERS[n].confounded_with)
         elif free:
             if n in free:
                 candidates.append(n)
@@ -330,9 +335,13 @@ def _weakest(fit: FitResult, names: list[str]):
 
 def predictive_covariance(fit: FitResult, priors: dict[str, float], inflation: dict | None = None) -> Covariance | None:
     """Covariance of the fit's parameters and of the brake parameters it held fixed (*priors*: their
-    assumed spreads), from the data's information plus a Gaussian prior on the fixed ones.  *inflation*:
+    assumed spreads), from the data's information plus a Gaussian prior on the fixed ones (a held parameter
+    whose catalogue effect the fit has, e.g. ``gap_m`` beside ``installation_gap``, is the effect's).  *inflation*:
     channel → factor on that channel's variance factor (autocorrelated residuals,
     :func:`rollaway.identify.intervals.ess_inflation`)."""
+    fitted_effects = {e.name for e in getattr(fit.model, "effects", ())}
+    priors = {n: sd for n, sd in priors.items()
+              if not (n in FREE_PARAMETERS and FREE_PARAMETERS[n].effect in fitted_effects)}
     names = list(fit.names) + [n for n in priors if n not in fit.names]
     if not names:
         return None

@@ -15,7 +15,8 @@ independent and the model as given.  Three things make such 95 % intervals too n
    with its assumed value (or cannot see it) is not known exactly: its assumed spread enters as a
    Gaussian prior and the fitted parameters' covariance is the marginal one
    (:func:`rollaway.identify.drum.predictive_covariance`), i.e. averaged over the fixed parameters
-   instead of conditioned on them.
+   instead of conditioned on them.  The installation gap ``gap_m`` is one of them, always: no torque log
+   tells it from μ_d (:mod:`rollaway.model.drum_parameters`); the bands then draw conditional on it.
 3. **The choice of effects.**  When competing effect sets carry weight (pseudo-BMA,
    :func:`rollaway.uncertainty.bands.alternatives`), a parameter's variance is that of the mixture:
    Σ wᵢ·(varᵢ + (mᵢ − m)²) with m the reported value (Hoeting et al. 1999, "Bayesian model

@@ -32,7 +32,7 @@ from rollaway.effects.hooks import call_hook
 from rollaway.physics import cooling, drum
 
 # Calibrated brake parameters a call may override through *values* (μ_d and h have their own arguments)
-CHAIN_OVERRIDES = ("u6_slope_m_per_N", "u6_offset_m", "shoe_arm_ratio", "ambient_temp_C")
+CHAIN_OVERRIDES = ("u6_slope_m_per_N", "u6_offset_m", "shoe_arm_ratio", "ambient_temp_C", "gap_m")
 
 
 @dataclass(frozen=True)
@@ -132,6 +132,8 @@ def evaluate(model, time_s: ArrayLike, hand_force_N: ArrayLike, direction="downh
     brake = {k: np.asarray(values[k], float) for k in CHAIN_OVERRIDES if values and k in values}
     if ambient_C is None and "ambient_temp_C" in brake:
         ambient_C = brake["ambient_temp_C"]
+    if gap_m is None and "gap_m" in brake:
+        gap_m = brake["gap_m"]
     active = model.active(values)
     if not active:
         return _baseline(model, time_s, hand_force_N, direction, mu_drum, gap_m, initial_temp_C, ambient_C,

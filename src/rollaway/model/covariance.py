@@ -32,6 +32,18 @@ class Covariance:
             raise UserError(f"covariance: matrix is {m.shape[0]}×{m.shape[1] if m.ndim > 1 else 1} but "
                             f"{len(self.names)} names are given; give one row and column per name")
 
+    def conditional(self, given: tuple[str, ...] | list[str]) -> "Covariance":
+        """The covariance of the other names with *given* held at their values (Gaussian conditioning: the Schur
+        complement Σ_aa − Σ_ag·Σ_gg⁻¹·Σ_ga); names of *given* not in the record are ignored."""
+        g = [i for i, n in enumerate(self.names) if n in given]
+        if not g:
+            return self
+        a = [i for i in range(len(self.names)) if i not in g]
+        s = self.matrix
+        sgg = s[np.ix_(g, g)]
+        cond = s[np.ix_(a, a)] - s[np.ix_(a, g)] @ np.linalg.pinv(sgg) @ s[np.ix_(g, a)]
+        return Covariance(tuple(self.names[i] for i in a), 0.5 * (cond + cond.T))
+
     @property
     def stderr(self) -> dict[str, float]:
         return {n: float(np.sqrt(max(self.matrix[i, i], 0.0))) for i, n in enumerate(self.names)}

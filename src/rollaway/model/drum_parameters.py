@@ -21,12 +21,27 @@ free name             what it stands for                          confounded wit
 ``shoe_arm_ratio``    ρ = l_fr/l_f (eqs. 18–21)                    l_fr, l_f separately
 ``heat_transfer_W_m2K`` τ (eq. 10)                               ρ_d·c_p·V (drum mass), A_conv
 ``ambient_temp_C``    T_amb (eq. 10), when the bench did not log it —
+``gap_m``             installation gap l_g (eq. 16b), never freed  μ_d (the same torque drop both ways)
+                      by itself: held, its doubt kept
 ====================  ==========================================  =====================================
 
 Each has a spread ``prior_sd`` **[assumed]**: how far a drum that is not the paper's may be
 from the paper's value.  It scales the identifiability test (a direction of the parameter
 space that the data pin down less tightly than this is "not identifiable") and carries the
 doubt of every parameter left at its assumed value into the uncertainty bands.
+
+The installation gap l_g is held at the set's value (0 in the paper set, eq. 16a) with a spread of
+0.6 mm **[assumed]**: Table 1 lists 1 mm, and a gap lowers the torque by the same fraction in both
+directions and nearly the same hot and cold, which a torque scale μ_d does as well, so a torque and
+temperature log cannot tell the two apart.  Held as known, it would leave μ_d's interval centred on the
+gap-free drum and missing the truth of a drum with Table 1's gap (the fit's μ_d then lies 0.03–0.06
+low); with its spread, the 1 mm of Table 1 sits at 1.7 spreads, inside the 95 % range.  The bands do not
+draw it (``drawn=False``): the road margin follows the torque the data pin, not how it splits between μ_d
+and l_g (refitted along that valley from 0 to 1.5 mm the margins of a campaign move 0.6 % inside the
+tested range and 1.3 % 80 °C hotter), while drawing the split from the linearised covariance widened the
+bands by half again; they draw the covariance conditional on the set's gap
+(:meth:`rollaway.model.covariance.Covariance.conditional`).  ``--free gap_m`` fits it (rarely
+identifiable); a fitted ``installation_gap`` effect takes its place.
 """
 from __future__ import annotations
 
@@ -48,6 +63,9 @@ class FreeParameter:
     channel: str               # "torque" or "temperature"
     stands_for: str
     confounded_with: tuple[str, ...] = ()
+    automatic: bool = True     # the drum calibration may free it by itself (False: held unless --free names it)
+    effect: str | None = None  # a catalogue effect that, when fitted, takes its place (its prior is dropped)
+    drawn: bool = True         # held, its doubt is drawn in the bands (False: in the parameter intervals only)
 
     def spread(self, value: float) -> float:
         return self.prior_sd * abs(value) if self.relative_sd else self.prior_sd
@@ -71,9 +89,13 @@ FREE_PARAMETERS: dict[str, FreeParameter] = {p.name: p for p in (
                   ("drum_density_kg_m3·drum_specific_heat_J_kgK·drum_volume_m3", "cooled_area_m2")),
     FreeParameter("ambient_temp_C", "T_amb", "°C", -40.0, 60.0, 8.0, False, "temperature",
                   "ambient air of the bench (eq. 10)"),
+    FreeParameter("gap_m", "l_g", "m", 0.0, 3e-3, 6e-4, False, "torque",
+                  "installation gap lining/drum (eq. 16b): Table 1 lists 1 mm, the set assumes 0",
+                  ("mu_drum",), automatic=False, effect="installation_gap", drawn=False),
 )}
 
 BASELINE_FREE = tuple(FREE_PARAMETERS)          # every name a calibration may free, in chain order
+NOT_DRAWN = tuple(n for n, p in FREE_PARAMETERS.items() if not p.drawn)   # held ones the bands hold at the set's value
 LEGACY_FREE = ("mu_drum", "heat_transfer_W_m2K")
 BASELINE_BOUNDS = {n: (p.lower, p.upper) for n, p in FREE_PARAMETERS.items()}
 BASELINE_UNITS = {n: p.unit for n, p in FREE_PARAMETERS.items()}
@@ -104,4 +126,4 @@ def apply(params: BrakeParameters, values: dict) -> BrakeParameters:
 
 
 __all__ = ["BASELINE_BOUNDS", "BASELINE_FREE", "BASELINE_UNITS", "FREE_PARAMETERS", "FreeParameter", "LEGACY_FREE",
-           "apply", "value_of", "values_of"]
+           "NOT_DRAWN", "apply", "value_of", "values_of"]
