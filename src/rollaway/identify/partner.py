@@ -180,8 +180,8 @@ def beside_reformed(data, params, first: str, first_fit: FitResult, names, nq: N
                         others))
     if not screened:
         return None
-    name = min(screened, key=lambda t: t[0].bic)[1]
-    both = calibrate(data, [flex, name], params, start=reform.values)
+    screen, name = min(screened, key=lambda t: t[0].bic)
+    both = calibrate(data, [flex, name], params, start=screen.values)      # on from where its screen stopped
     if both.jacobian is None or both.bic - reform.bic >= BIC_THRESHOLD:
         return None
     pref = _heldout_preference(data, both, reform)
