@@ -95,7 +95,8 @@ def diagnose(data: Measurements, params=None, effects=None, *, noise_torque_Nm: 
     first_cands, base_cv, indist, struct = [], None, [], base_struct
     for step in range(1, max_effects + 1):
         per_test_ok = per_test_signature(current, nq)
-        cands, strong, passing, cur_cv = forward_step(data, params, names, current, chosen, step, per_test_ok)
+        cands, strong, passing, cur_cv = forward_step(data, params, names, current, chosen, step, per_test_ok,
+                                                      held_brake=drum.held())
         if not per_test_ok and any(has_per_test(n) for n in names if n not in chosen):
             ev.append(f"Step {step}: per-test effects ({', '.join(n for n in names if has_per_test(n))}) not "
                       f"tried: the torque residual is not a constant offset within each test (its test means "
@@ -121,6 +122,13 @@ def diagnose(data: Measurements, params=None, effects=None, *, noise_torque_Nm: 
                   f"{cur_cv:.1f} → {best.cv_score:.1f} (better in {best.cv_better_tests} of {data.n_tests} tests).  "
                   f"Expected signature: {get_effect(best.effect).signature}.")
         current = best.fit
+        freed = [n for n in current.model.free if n not in params.free]
+        if freed:                                            # fitted with its channel's held brake parameters free
+            drum.refree(current, f"freed to compare {best.effect}, which changes the law of their channel")
+            params = drum.plan
+            ev.append(f"{best.effect} changes the law of a measured channel: it was compared with "
+                      f"{', '.join(freed)} free (the bare drum held {'them' if len(freed) > 1 else 'it'} as not "
+                      f"needed), the penalty for {'them' if len(freed) > 1 else 'it'} counted in its BIC.")
         refit = free_needed(drum, data, chosen, current)     # the bare drum held them under a model without
         if refit is not None:                                # this effect: its misfit may have hidden their need
             params, current, struct = drum.plan, refit, structure(refit, nq, nt)

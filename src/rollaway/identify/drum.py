@@ -107,6 +107,15 @@ class DrumCalibration:
         """Assumed spreads of the brake parameters left at their assumed values (for the bands)."""
         return {n: e.prior_sd for n, e in self.entries.items() if e.prior_sd and e.status != "fitted"}
 
+    def refree(self, fit: FitResult, reason: str) -> None:
+        """Mark the brake parameters *fit* frees that this calibration held as fitted, with *fit*'s estimates."""
+        for n in fit.model.free:
+            e = self.entries.get(n)
+            if e is not None and e.status != "fitted":
+                est = fit.estimates[n]
+                e.status, e.value, e.stderr, e.ci95, e.prior_sd = "fitted", est.value, est.stderr, tuple(est.ci95), None
+                e.reason = reason
+
     def update(self, fit: FitResult) -> None:
         """Refresh the fitted entries from a later fit of the same plan (e.g. with effects)."""
         for n, e in self.entries.items():
@@ -283,11 +292,7 @@ def free_needed(drum: DrumCalibration, data: Measurements, effects: list, fit: F
         best = trial
     if not held or best.bic >= fit.bic or best.jacobian is None:
         return None
-    for n in held:
-        e = drum.entries[n]
-        est = best.estimates[n]
-        e.status, e.value, e.stderr, e.ci95, e.prior_sd = "fitted", est.value, est.stderr, tuple(est.ci95), None
-        e.reason = f"needed once {', '.join(effects)} is in the model (BIC {best.bic - fit.bic:+.1f})"
+    drum.refree(best, f"needed once {', '.join(effects)} is in the model (BIC {best.bic - fit.bic:+.1f})")
     return best
 
 

@@ -145,23 +145,27 @@ def _cv_refit(data: Measurements, effects, params, start: FitResult) -> np.ndarr
 
 # -- the steps ---------------------------------------------------------------------------
 def forward_step(data, params, names, current: FitResult, chosen: list[str], step: int,
-                 per_test_ok: bool = True, screen: bool = False):
+                 per_test_ok: bool = True, screen: bool = False, held_brake=()):
     """Fit every remaining candidate on top of *current*; cross-validate the strong ones.  Effects
     with per-test parameters are tried only when *per_test_ok* (:func:`per_test_signature`).
     *screen*: fit the candidates with the brake parameters held, then refit the best few jointly
-    (faster, but an effect the calibrated drum has partly absorbed can be missed)."""
+    (faster, but an effect the calibrated drum has partly absorbed can be missed).  *held_brake*: brake
+    parameters the drum calibration held as not needed; a candidate that changes a measured channel's own law
+    (the cooling law: :meth:`Effect.touches_temperature`) is fitted with that channel's held ones free
+    (:func:`own_channel_plan`)."""
     start = {k: v for k, v in current.values.items()}
     held, n_held = _held_plan(params, current) if screen else (params, 0)
     tried, calls, plans = [], [], []
     for name in names:
         if name in chosen or (not per_test_ok and has_per_test(name)):
             continue
+        own = own_channel_plan(params, name, held_brake)
         if has_per_test(name) and held is params:      # per-test fits are the costly ones: screen them
-            h, k = _held_plan(params, current)
-            calls.append((_per_test_screen, (chosen + [name], h, params), dict(start=start)))
+            h, k = _held_plan(own, current)
+            calls.append((_per_test_screen, (chosen + [name], h, own), dict(start=start)))
         elif held is params:                            # a short joint fit ranks; the best few are finished below
-            h, k = held, 0
-            calls.append((calibrate, (chosen + [name], params), dict(start=start, max_iterations=SCREEN_ITERATIONS)))
+            h, k = own, 0
+            calls.append((calibrate, (chosen + [name], own), dict(start=start, max_iterations=SCREEN_ITERATIONS)))
         else:
             h, k = held, n_held
             calls.append((calibrate, (chosen + [name], held), dict(start=start)))     # brake parameters held
@@ -172,9 +176,10 @@ def forward_step(data, params, names, current: FitResult, chosen: list[str], ste
              for name, (h, k), fit in zip(tried, plans, run_fits(data, calls))]
     cands.sort(key=lambda c: c.delta_bic)
     top = [c for c in cands[:REFIT_TOP] if held is not params or not has_per_test(c.effect)]
-    for c, fit in zip(top, run_fits(data, [(calibrate, (chosen + [c.effect], params), dict(start=c.fit.values))
-                                           for c in top])):   # the best few refitted with the brake parameters free
-        c.fit = fit
+    for c, fit in zip(top, run_fits(data, [(calibrate, (chosen + [c.effect], own_channel_plan(params, c.effect,
+                                                                                                held_brake)),
+                                            dict(start=c.fit.values)) for c in top])):
+        c.fit = fit                                             # the best few refitted with the brake parameters free
         c.delta_bic, c.delta_aic = c.fit.bic - current.bic, c.fit.aic - current.aic
     cands.sort(key=lambda c: c.delta_bic)
     strong = [c for c in cands if c.delta_bic < BIC_THRESHOLD and c.fit.jacobian is not None
@@ -184,11 +189,26 @@ def forward_step(data, params, names, current: FitResult, chosen: list[str], ste
         cur_scores = cv_score(data, chosen, params, current)
         cur_cv = float(cur_scores.sum())
         for c in strong:
-            s = cv_score(data, chosen + [c.effect], params, c.fit)
+            s = cv_score(data, chosen + [c.effect], own_channel_plan(params, c.effect, held_brake), c.fit)
             c.cv_score = float(s.sum())
             c.cv_better_tests = int((s < cur_scores).sum())
     passing = [c for c in strong if c.cv_score is not None and c.cv_score < cur_cv]
     return cands, strong, passing, cur_cv
+
+
+def own_channel_plan(params, name: str, held_brake=()):
+    """*params* with the brake parameters of *held_brake* (held as not needed by the bare drum) that belong to the
+    measured channel whose own law the effect *name* changes freed: an effect that changes the cooling law
+    (radiation) is compared with h and T_amb free, since with the convective h held at a value the bare drum
+    agreed with, no added cooling can fit (the convection it must give back is held).  *params* itself when
+    there are none."""
+    from rollaway.effects import get_effect
+    from rollaway.identify.model import DrumPlan
+    from rollaway.model.drum_parameters import FREE_PARAMETERS
+    if not held_brake or not isinstance(params, DrumPlan) or not get_effect(name).touches_temperature():
+        return params
+    add = tuple(n for n in held_brake if FREE_PARAMETERS[n].channel == "temperature" and n not in params.free)
+    return DrumPlan(params.params, params.free + add) if add else params
 
 
 def _per_test_screen(data, effects, held, params, start):
