@@ -181,7 +181,8 @@ def beside_reformed(data, params, first: str, first_fit: FitResult, names, nq: N
     if not screened:
         return None
     screen, name = min(screened, key=lambda t: t[0].bic)
-    both = calibrate(data, [flex, name], params, start=screen.values)      # on from where its screen stopped
+    both = calibrate(data, [flex, name], params, start=screen.values,       # on from where its screen stopped,
+                     max_iterations=REFORM_ITERATIONS)                      # with the re-formed first's budget
     if both.jacobian is None or both.bic - reform.bic >= BIC_THRESHOLD:
         return None
     pref = _heldout_preference(data, both, reform)
