@@ -54,3 +54,24 @@ def test_channel_rivals_put_another_quantity_with_the_same_covariate_in_a_shape_
     assert [[e.name for e in f.model.effects] for f in got] == [["modulus_temperature_shape"]]
     assert got[0].bic < fit.bic                  # the modulus in any shape fits a modulus change better than friction
     assert channel_rivals(data, fit, cands[1:], None) == []
+
+
+def test_shape_curves_of_a_fit_that_holds_mu_drum():
+    """A drum calibration can hold μ_d (confounded with the eq. (24) slope on a sparse log): the partial-form
+    curves then read it from the parameter set (this raised KeyError 'mu_drum' inside diagnose)."""
+    import numpy as np
+    from rollaway.effects import get_effect
+    from rollaway.identify.calibrate import calibrate
+    from rollaway.identify.model import DrumPlan
+    from rollaway.identify.shape import covariate_of, flexible_effect, shape_curves, shape_hook
+    from rollaway.model.parameters import paper
+    from tests.identify.bench_generator import generate
+    data = generate(["friction_quadratic"], sampling="5min", seed=31, forces=np.linspace(180.0, 340.0, 3))
+    plan = DrumPlan(paper(), ("heat_transfer_W_m2K",))
+    eff = get_effect("friction_temperature")
+    fit = calibrate(data, [eff], plan)
+    assert "mu_drum" not in fit.values
+    flex = flexible_effect(eff, covariate_of(fit, shape_hook(eff)[1]))
+    curves = shape_curves(eff, fit, calibrate(data, [flex], plan, start=fit.values), flex)
+    factor = np.asarray(curves["catalogue"]["factor"])
+    assert curves["hook"] == "friction" and np.all(np.isfinite(factor)) and factor.size == len(data)

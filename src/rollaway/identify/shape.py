@@ -178,7 +178,7 @@ def shape_curves(effect: Effect, catalogue_fit, flex_fit, flex_cls, points: int 
     hook, cov = flex_cls.hook, flex_cls.covariate
     data = catalogue_fit.data
     model = catalogue_fit.model
-    values = catalogue_fit.values
+    values = {**model.neutral_values(), **catalogue_fit.values}     # a brake parameter held (μ_d, …) at its value
     st = model.state(data, values)
     pred = catalogue_fit.prediction
     st.drum_temp_C = np.asarray(pred.drum_temp_C, float)
