@@ -9,8 +9,33 @@ STEFAN_BOLTZMANN_W_m2K4 = 5.670374419e-8
 KELVIN = 273.15
 
 
+CACHE_SIZE = 8    # a fit asks for the same cooling again and again: every Jacobian column of a torque parameter
+
+
 def radiative_convective_temperature_C(time_s, initial_temp_C, ambient_C, heat_transfer_W_m2K,
                                        emissivity, cooled_area_m2, heat_capacity_J_K, n_grid=1500):
+    """Lumped drum cooling by convection and radiation [°C] (:func:`_cooling_C`), the last :data:`CACHE_SIZE`
+    answers kept: a fit's Jacobian columns of the torque's own parameters leave the cooling unchanged (half the calls
+    of a diagnosis of a radiating drum repeat one of the last few).  The answer is read-only."""
+    args = [np.ascontiguousarray(np.asarray(x, float)) for x in (time_s, initial_temp_C, ambient_C,
+                                                                  heat_transfer_W_m2K, emissivity)]
+    key = (tuple(a.shape for a in args), b"".join(a.tobytes() for a in args), float(cooled_area_m2),
+           float(heat_capacity_J_K), int(n_grid))
+    out = _CACHE.pop(key, None)
+    if out is None:
+        out = _cooling_C(*args, cooled_area_m2, heat_capacity_J_K, n_grid)
+        out.flags.writeable = False
+        if len(_CACHE) >= CACHE_SIZE:
+            _CACHE.pop(next(iter(_CACHE)))
+    _CACHE[key] = out                     # the most recent last
+    return out
+
+
+_CACHE: dict[tuple, np.ndarray] = {}
+
+
+def _cooling_C(time_s, initial_temp_C, ambient_C, heat_transfer_W_m2K, emissivity, cooled_area_m2,
+               heat_capacity_J_K, n_grid):
     """Lumped drum cooling by convection and radiation [°C].
 
     ``C dT/dt = −h A (T − T_a) − ε σ A (T_K⁴ − T_aK⁴)`` is separable: with s = ln(T − T_a),
