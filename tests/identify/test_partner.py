@@ -107,3 +107,33 @@ def test_one_mis_formed_effect_is_not_a_pair():
     d = diagnose(generate([hidden], sampling="1min", seed=7700 + i, mu=mu, h=h, drum=drum,
                           forces=np.linspace(180.0, 360.0, 4), t0_range=(100.0, 250.0)))
     assert len(d.effects) <= 1, d.verdict
+
+
+def test_within_tests_removes_each_tests_level_in_the_named_channels_only():
+    from rollaway.identify.partner import _within_tests
+
+    class Data:
+        test_index, n_tests = np.array([0, 0, 1, 1, 1]), 2
+
+        def __len__(self):
+            return 5
+    r = np.arange(10.0)
+    out = _within_tests(Data(), r, {"torque"})
+    assert np.array_equal(out[:5], r[:5])                                   # temperature untouched
+    assert np.allclose(out[5:], [-0.5, 0.5, -1.0, 0.0, 1.0])               # torque less each test's mean
+    assert np.array_equal(r, np.arange(10.0))                               # the input is not changed
+
+
+def test_a_zero_offset_per_test_is_judged_within_the_tests():
+    """A per-test zero offset refits the held-out test's own level, so beside a mis-formed first effect it always
+    "predicts" held-out tests better: held-out campaign 209 (a linear modulus drop, 2 tests, 26 rows) came out
+    friction_temperature + torque_zero_offset.  Compared within the tests it has no evidence of its own; a true
+    zero offset beside a friction change still has."""
+    from tests.identify.heldout_names import campaign
+    d = diagnose(campaign(209)[1])
+    assert [e["effect"] for e in d.effects] == [d.verdict], d.summary()
+    step = next(s for s in d.steps if s.get("step") == "own evidence")
+    assert step["effect"] == "torque_zero_offset" and not step["kept"]
+    for seed in (1, 6):
+        d = diagnose(generate(["zero_offset", "friction_linear"], sampling="5min", seed=seed))
+        assert sorted(e["effect"] for e in d.effects) == ["friction_temperature", "torque_zero_offset"], d.summary()

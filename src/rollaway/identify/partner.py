@@ -76,13 +76,18 @@ def beyond_reform(data, params, chosen: list[str], current: FitResult, two: FitR
 
 
 def _heldout_preference(d, two: FitResult, reform: FitResult) -> dict:
-    """Held-out comparison of *two* against *reform* (:func:`beyond_reform`'s rule, without its BIC condition)."""
+    """Held-out comparison of *two* against *reform* (:func:`beyond_reform`'s rule, without its BIC condition).
+    Where *two* has per-test values that *reform* lacks, within each test (:func:`_within_tests`)."""
     from rollaway.identify.ambiguity import HELDOUT_SE, SMALL_ELPD
     n = len(d)
     out = {"channels": {}}
     per = {}
+    within = _own_level_channels(two) - _own_level_channels(reform)
     for key, fit in (("reform", reform), ("two", two)):
-        r2 = loto_residuals(fit) ** 2
+        r = loto_residuals(fit)
+        if within:
+            r = _within_tests(d, r, within)
+        r2 = r ** 2
         per[key] = {"temperature": np.bincount(d.test_index, r2[:n], d.n_tests),
                     "torque": np.bincount(d.test_index, r2[n:], d.n_tests)}
     ok = True
@@ -99,6 +104,28 @@ def _heldout_preference(d, two: FitResult, reform: FitResult) -> dict:
                passes=bool(ok and total.sum() > max(SECOND_EFFECT_SE * se, SMALL_ELPD) and 2 * better > total.size
                            and total.sum() - total.max() > SMALL_ELPD))
     return out
+
+
+def _own_level_channels(fit: FitResult) -> set[str]:
+    """The channels in which an effect of *fit* with values per test (a zero offset per test) sets each test's own
+    level: the torque, and the drum temperature where such an effect changes it."""
+    per_test = [e for e in fit.model.effects if any(p.per_test for p in e.parameters)]
+    return ({"torque"} | ({"temperature"} if any(e.touches_temperature() for e in per_test) else set())
+            if per_test else set())
+
+
+def _within_tests(d, r: np.ndarray, channels: set[str]) -> np.ndarray:
+    """Standardised residuals *r* ([temperature | torque]) less each test's mean in *channels*.  A fit with per-test
+    values refits the held-out test's own values (its level) from that test itself: compared with a fit without
+    them, only what the residuals do within each test is a fair held-out comparison."""
+    n = len(d)
+    r = np.array(r, float, copy=True)
+    counts = np.maximum(np.bincount(d.test_index, minlength=d.n_tests), 1)
+    for ch, off in (("temperature", 0), ("torque", n)):
+        if ch in channels:
+            part = r[off:off + n]
+            part -= (np.bincount(d.test_index, part, d.n_tests) / counts)[d.test_index]
+    return r
 
 
 def own_evidence(data, params, chosen, current, struct, fits, nq, nt, steps, ev, refree=(), names=()):
