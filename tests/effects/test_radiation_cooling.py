@@ -30,3 +30,20 @@ def test_samples_on_both_sides_in_one_call():
     assert got[0] < AMBIENT_C < got[1]
     assert got == pytest.approx([reference(np.array([0.0, 600.0]), -10.0)[1],
                                  reference(np.array([0.0, 600.0]), 150.0)[1]], abs=2e-3)
+
+
+def test_kept_answers_are_the_answers_shaped_like_the_inputs_and_read_only():
+    """The last answers are kept (a fit asks for the same cooling again): a repeat returns the same numbers, a
+    change of any input another answer, a single instant a single value."""
+    t_s = np.array([0.0, 600.0, 3600.0])
+    first = radiative_convective_temperature_C(t_s, 200.0, AMBIENT_C, H_W_m2K, EMISSIVITY, AREA_m2, C_J_K)
+    again = radiative_convective_temperature_C(t_s.copy(), 200.0, AMBIENT_C, H_W_m2K, EMISSIVITY, AREA_m2, C_J_K)
+    assert np.array_equal(first, again) and not again.flags.writeable
+    hotter = radiative_convective_temperature_C(t_s, 201.0, AMBIENT_C, H_W_m2K, EMISSIVITY, AREA_m2, C_J_K)
+    assert np.all(hotter[1:] > first[1:])
+    other_h = radiative_convective_temperature_C(t_s, 200.0, AMBIENT_C, H_W_m2K * 1.01, EMISSIVITY, AREA_m2, C_J_K)
+    assert np.all(other_h[1:] < first[1:])
+    one = radiative_convective_temperature_C(600.0, 200.0, AMBIENT_C, H_W_m2K, EMISSIVITY, AREA_m2, C_J_K)
+    assert np.shape(one) == () and float(one) == pytest.approx(first[1], rel=1e-12)
+    column = radiative_convective_temperature_C(t_s[:, None], 200.0, AMBIENT_C, H_W_m2K, EMISSIVITY, AREA_m2, C_J_K)
+    assert column.shape == (3, 1) and np.array_equal(column[:, 0], first)

@@ -17,8 +17,7 @@ def radiative_convective_temperature_C(time_s, initial_temp_C, ambient_C, heat_t
     """Lumped drum cooling by convection and radiation [°C] (:func:`_cooling_C`), the last :data:`CACHE_SIZE`
     answers kept: a fit's Jacobian columns of the torque's own parameters leave the cooling unchanged (half the calls
     of a diagnosis of a radiating drum repeat one of the last few).  The answer is read-only."""
-    args = [np.ascontiguousarray(np.asarray(x, float)) for x in (time_s, initial_temp_C, ambient_C,
-                                                                  heat_transfer_W_m2K, emissivity)]
+    args = [np.asarray(x, float) for x in (time_s, initial_temp_C, ambient_C, heat_transfer_W_m2K, emissivity)]
     key = (tuple(a.shape for a in args), b"".join(a.tobytes() for a in args), float(cooled_area_m2),
            float(heat_capacity_J_K), int(n_grid))
     out = _CACHE.pop(key, None)
