@@ -118,13 +118,15 @@ def test_a_none_verdict_names_a_suggested_effect_as_a_weak_alternative_and_clean
     weak alternative with the test that would settle it.  Clean data of the same design get no alternative."""
     from rollaway.identify.ambiguity import WEAK_BIC
     from rollaway.identify.diagnose import diagnose
+    from rollaway.identify.selection import BIC_THRESHOLD
     from tests.identify.bench_generator import generate
     hits = 0
     for seed in range(70, 79):
         d = diagnose(generate(["creep_exponential"], sampling="5min", seed=seed, directions=("downhill",), n_forces=2))
         weak = [a for a in d.alternatives if a.get("weak")]
         assert not weak or d.verdict == "none"
-        assert all(a["delta_bic"] < WEAK_BIC and a["heldout_elpd"] > 0 and a["tell_apart"]["words"] for a in weak)
+        assert all(a["delta_bic"] < WEAK_BIC and (a["heldout_elpd"] > 0 or a["delta_bic"] < BIC_THRESHOLD)
+                   and a["tell_apart"]["words"] for a in weak)
         hits += any(a["effects"] == ["lining_creep"] for a in weak)
         if weak:
             assert verdict_line(d.verdict, d.alternatives).startswith("none (suggested, not established: ")
@@ -220,3 +222,20 @@ def test_a_two_effect_verdict_names_the_set_with_the_temperature_law_it_cannot_t
             assert all(len(a["effects"]) == 2 and a["kind"] == "rival" for a in d.alternatives)
             assert d.as_dict()["verdict_line"].startswith(" + ".join(e["effect"] for e in d.effects) + " or ")
     assert hits >= 11, hits
+
+
+def test_a_none_verdict_names_an_effect_that_clears_the_verdicts_bar_once_the_drum_stops_imitating_it():
+    """Held-out campaign 38 (independent generator): exponential lining creep, two tests facing one way, 1-min
+    samples.  Against the free drum creep lowers BIC by 6.8 only (the eq. (24) slope and offset imitate it); with
+    those held it lowers BIC by 13.5 — beyond the verdict's own bar — and the two held-out tests predict equally well
+    (they cannot tell which).  It is named as a weak alternative ("suggested, not established"), not dropped."""
+    from rollaway.identify.diagnose import diagnose
+    from rollaway.identify.selection import BIC_THRESHOLD
+    from tests.identify.heldout_names import campaign
+    hidden, data = campaign(38)
+    assert hidden == "creep_exponential"
+    d = diagnose(data)
+    weak = [a for a in d.alternatives if a.get("weak")]
+    assert d.verdict == "none" and [a["effects"] for a in weak][:1] == [["lining_creep"]], d.summary()
+    assert weak[0]["delta_bic"] < BIC_THRESHOLD and "imitates it" in weak[0]["why"]
+    assert verdict_line(d.verdict, d.alternatives).startswith("none (suggested, not established: lining_creep")

@@ -56,6 +56,35 @@ def test_channel_rivals_put_another_quantity_with_the_same_covariate_in_a_shape_
     assert channel_rivals(data, fit, cands[1:], None) == []
 
 
+def test_a_partial_verdict_names_the_other_quantity_its_spline_cannot_be_told_from():
+    """Held-out campaign 128: friction fading above 150 °C, three tests facing downhill only.  Modulus_temperature is
+    the verdict ("partial": its linear form leaves structure) and was named alone, though friction in a spline of the
+    lining temperature fits exactly as well as the modulus in one (one direction: only the self-energising factor
+    tells them apart).  Both are named, with the other direction as the test."""
+    from rollaway.identify.ambiguity import verdict_line
+    hidden, data = campaign(128)
+    assert hidden == "friction_fade_above"
+    d = diagnose(data)
+    assert judge(hidden, d)["right_or_alternative"] and not judge(hidden, d)["partner"]
+    alt = next(a for a in d.alternatives if a.get("channel"))
+    assert {d.verdict, *alt["effects"]} == {"modulus_temperature", "friction_temperature"}
+    assert alt["form"] == "shape-free" and "not which quantity" in alt["why"]
+    line = verdict_line(d.verdict, d.alternatives)
+    assert "these data cannot tell them apart" in line and "facing uphill" in line, line
+
+
+@pytest.mark.parametrize("i", [31, 43, 55, 67])
+def test_both_directions_tell_friction_from_a_modulus_in_any_shape(i):
+    """Friction rising with the square of the temperature, tested in both directions: the catalogue's linear form
+    leaves structure (verdict "partial"), but a friction spline beats a modulus spline — the downhill/uphill ratio
+    moves with friction only — so no other quantity is named beside it."""
+    hidden, data = campaign(i)
+    assert hidden == "friction_quadratic" and len(set(data.direction)) == 2
+    d = diagnose(data)
+    assert d.verdict == "friction_temperature"
+    assert not [a for a in d.alternatives if a.get("channel")], d.alternatives
+
+
 def test_shape_curves_of_a_fit_that_holds_mu_drum():
     """A drum calibration can hold μ_d (confounded with the eq. (24) slope on a sparse log): the partial-form
     curves then read it from the parameter set (this raised KeyError 'mu_drum' inside diagnose)."""

@@ -30,6 +30,7 @@ import math
 
 import numpy as np
 
+from rollaway.identify.selection import BIC_THRESHOLD
 from rollaway.uncertainty.heldout import loto_scores
 
 INDISTINGUISHABLE_BIC = 6.0   # "positive" evidence at most (Kass & Raftery 1995): no choice on BIC alone
@@ -173,7 +174,10 @@ def weak_alternatives(plan, base, candidates: list, validity: dict, noise_torque
     that it makes unnecessary held (backward elimination by BIC, μ_d always fitted; the bare drum freed them to
     imitate it: a loss with time at constant temperature takes the eq. (24) slope and offset) — and kept when that
     fit lowers BIC by more than −:data:`WEAK_BIC` and predicts held-out tests better (:func:`heldout_difference`
-    above :data:`SMALL_ELPD`), with the test that would settle it (:func:`tell_apart`).  At most
+    above :data:`SMALL_ELPD`) — or, where it lowers BIC beyond the verdict's own bar
+    (:data:`~rollaway.identify.selection.BIC_THRESHOLD`), when the held-out prediction does not prefer the drum
+    (beyond :func:`preference_margin`): the drum imitated it, and two tests cannot say which — with the test that
+    would settle it (:func:`tell_apart`).  At most
     :data:`MAX_RIVALS`, best first: ``{"effects", "delta_bic", "heldout_elpd", "heldout_se", "why", "fit",
     "tell_apart", "weak": True}``."""
     out = []
@@ -184,13 +188,17 @@ def weak_alternatives(plan, base, candidates: list, validity: dict, noise_torque
         if fit is None or fit.bic - base.bic >= WEAK_BIC:
             continue
         elpd, se = heldout_difference(base, fit)
-        if elpd <= SMALL_ELPD:
+        strong = fit.bic - base.bic < BIC_THRESHOLD      # the verdict's bar, met only with drum parameters held
+        if elpd <= (-preference_margin(base, se) if strong else SMALL_ELPD):
             continue
         held = [n for n in plan.free if n not in fit.model.free]
         why = (f"with {c.effect} in the model{' ' + ', '.join(held) + ' need not be fitted and' if held else ''} BIC "
                f"drops by {base.bic - fit.bic:.1f} (selection needs {-WEAK_BIC:g} to name it as an alternative, 10 "
-               f"as the verdict) and held-out tests are predicted better (Δ log score {elpd:+.1f} ± {se:.1f}): "
-               f"suggested, not established")
+               f"as the verdict) and held-out tests are predicted "
+               + ("better" if elpd > SMALL_ELPD else "as well") + f" (Δ log score {elpd:+.1f} ± {se:.1f}): "
+               f"suggested, not established" + ("" if not strong or elpd > SMALL_ELPD else
+                                                 f" — the drum with {', '.join(held) or 'its parameters'} free "
+                                                 f"imitates it, and the held-out tests cannot tell which"))
         out.append({"kind": "weak", "effects": [c.effect], "delta_bic": float(fit.bic - base.bic), "heldout_elpd": elpd,
                     "heldout_se": se, "why": why, "fit": fit, "weak": True,
                     "tell_apart": tell_apart(base, fit, validity, noise_torque_Nm)})

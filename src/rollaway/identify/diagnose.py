@@ -37,7 +37,7 @@ from rollaway.bench.noise import Noise, noise_estimate, sample_sigma
 from rollaway.identify.detection import detection_limits, hidden_shifts, hidden_words, limits_words
 from rollaway.identify.diagnose_words import describe_residual, no_candidate_words, noise_words, structure_words
 from rollaway.identify.partner import own_evidence
-from rollaway.identify.shape import form_rivals, other_form_rivals, shape_rivals
+from rollaway.identify.shape import channel_alternatives, form_rivals, other_form_rivals, shape_rivals
 from rollaway.identify.selection import (BIC_THRESHOLD, SCREEN_ITERATIONS, Candidate, cv_score, eliminate, exchange,
                                          folds, forward_step, has_per_test, per_test_signature, structure,
                                          weighted_chi2)
@@ -223,6 +223,11 @@ def diagnose(data: Measurements, params=None, effects=None, *, noise_torque_Nm: 
                                    drum.plan)[:MAX_RIVALS - len(rivalry)]:
             a["tell_apart"] = tell_apart(refined, a["fit"], validity(full), nq.sigma)
             rivalry.append(a)
+    if misfit and selected and len(rivalry) < MAX_RIVALS:      # the form is wrong: is the quantity known?
+        for a in channel_alternatives(refined, forms, channels, max(ess_inflation(refined).values())):
+            if len(rivalry) < MAX_RIVALS and all(set(a["effects"]) != set(r["effects"]) for r in rivalry):
+                a["tell_apart"] = tell_apart(refined, a["fit"], validity(full), nq.sigma)
+                rivalry.append(a)
     if len(selected) >= 2 and not remaining:
         rivalry = set_rivals(data, params, names, [e["effect"] for e in selected], refined,
                              max(ess_inflation(refined).values()), SCREEN_ITERATIONS)
@@ -241,7 +246,7 @@ def diagnose(data: Measurements, params=None, effects=None, *, noise_torque_Nm: 
     pool = [base] + [c.fit for c in first_cands]
     if data is not full:                                  # the chosen model, refitted on every row
         _predictive(data, refined, pool, len(selected), drum, misfit, [a["fit"] for a in rivalry + weak], forms,
-                    [a["fit"] for a in rivalry if a.get("kind") == "rival"], (nq, nt))
+                    [a["fit"] for a in rivalry if a.get("kind") == "rival" and not a.get("channel")], (nq, nt))
         alts, pool = refined.fit_info.get("alternatives", []), []
         refined = calibrate(full, refined.effects, params, start=refined.values)
         refined.fit_info["alternatives"] = alts
@@ -250,7 +255,7 @@ def diagnose(data: Measurements, params=None, effects=None, *, noise_torque_Nm: 
         data = full
     refined.covariance = predictive_covariance(refined, drum.fixed_priors(), ess_inflation(refined))
     _predictive(data, refined, pool, len(selected), drum, misfit, [a["fit"] for a in rivalry + weak], forms,
-                [a["fit"] for a in rivalry if a.get("kind") == "rival"], (nq, nt))
+                [a["fit"] for a in rivalry if a.get("kind") == "rival" and not a.get("channel")], (nq, nt))
     alts = refined.fit_info.get("alternatives") or []
     restate(refined, mixture_variances(refined, alts) or covariance_variances(refined))
     for f in [refined] + [f for _, f in alts]:        # the bands draw with the held gap at the set's value

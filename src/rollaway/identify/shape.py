@@ -161,6 +161,46 @@ def other_form_rivals(data, fit, own_shape, candidates, params) -> list[dict]:
     return sorted(out, key=lambda a: a["delta_bic"])
 
 
+def channel_alternatives(fit, forms, channels, inflation: float = 1.0) -> list[dict]:
+    """Other quantities a verdict whose catalogue form leaves structure (*fit*) does not rule out: each channel
+    rival (:func:`channel_rivals`: an effect of *fit* exchanged for the spline of another effect along the same
+    covariate) compared, freedom for freedom, with the verdict's own spline (its form rival in *forms*, the same
+    knots): named when their BIC differs by less than :data:`~rollaway.identify.ambiguity.INDISTINGUISHABLE_BIC`
+    (divided by the residual variance *inflation*, as :func:`~rollaway.identify.ambiguity.rivals`) and the
+    held-out prediction does not prefer the verdict's spline beyond
+    :func:`~rollaway.identify.ambiguity.preference_margin`.  A friction and a lining modulus falling with the lining
+    temperature differ only through the self-energising factor (the downhill/uphill ratio, eqs. (18)–(21)): on one
+    direction or few forces a spline in either fits.  Best first: ``{"kind": "rival", "form": "shape-free",
+    "channel": True, "effects", "delta_bic" (against the verdict's spline), "heldout_elpd", "heldout_se", "why",
+    "fit"}``; in the bands such a fit keeps its held-out weight beside the verdict's own spline (no BIC floor: the
+    catalogue form it would be weighed against is the one the structure faults)."""
+    from rollaway.identify.ambiguity import INDISTINGUISHABLE_BIC, heldout_difference, preference_margin
+    names = [e.name for e in fit.model.effects]
+    own = {}
+    for f in forms:                        # the verdict with its k-th effect shape-free, by k
+        k = [i for i, e in enumerate(f.model.effects) if e.name != names[i]]
+        if len(f.model.effects) == len(names) and len(k) == 1:
+            own[k[0]] = f
+    out = []
+    for c in channels:
+        k = [i for i, e in enumerate(c.model.effects) if e.name != names[i]] if len(c.model.effects) == len(names) else []
+        if len(k) != 1 or k[0] not in own:
+            continue
+        mine, other = own[k[0]], getattr(c.model.effects[k[0]], "base", c.model.effects[k[0]].name)
+        dbic = (c.bic - mine.bic) / max(inflation, 1.0)
+        elpd, se = heldout_difference(mine, c)
+        if dbic >= INDISTINGUISHABLE_BIC or elpd <= -preference_margin(mine, se):
+            continue
+        effects = names[:k[0]] + [other] + names[k[0] + 1:]
+        out.append({"kind": "rival", "form": "shape-free", "channel": True, "effects": effects,
+                    "delta_bic": float(dbic), "heldout_elpd": elpd, "heldout_se": se, "fit": c,
+                    "why": (f"with a spline in {c.model.effects[k[0]].covariate} in place of {names[k[0]]}'s form, "
+                            f"{other} fits as well as {names[k[0]]} (BIC {dbic:+.1f}) and the held-out prediction does "
+                            f"not prefer either (Δ log score {elpd:+.1f} ± {se:.1f}): the data say that something "
+                            f"changes with {c.model.effects[k[0]].covariate}, not which quantity")})
+    return sorted(out, key=lambda a: a["delta_bic"])
+
+
 def covariate_of(fit, name: str) -> np.ndarray:
     """The covariate at every sample of a fit (lining temperature from the fitted model)."""
     if name == "time_s":
