@@ -102,3 +102,46 @@ def test_band_shares_follow_the_law_of_total_variance():
     s = risk.detail["shares"]
     assert abs(sum(s.values()) - 1.0) < 0.02, s
     assert s["choice_of_effects"] > s["parameters"] and s["model_error"] > 0.0, s
+
+
+def test_an_untested_direction_draws_the_gap_that_the_tested_one_cannot_see():
+    """One-direction campaigns (downhill, 3 forces, 5-min) of the independent generator: a 1 mm installation gap on
+    the paper's drum, or a 5 mm soft lining (a gap of several mm in eq. 16b).  The fit's μ_d comes out low (the
+    gap takes part of the torque in both directions, the self-energising factor only through μ_d); facing uphill
+    the bands now draw the gap (≥ 0, with μ_d along their covariance): the band's centre moves down towards the
+    truth and the band holds it.  Facing the tested direction the bands are unchanged."""
+    from unittest import mock
+
+    from scipy.optimize import brentq
+
+    from rollaway.hold import required_torque
+    from rollaway.identify.diagnose import diagnose
+    from rollaway.uncertainty import draws
+    from tests.identify.bench_generator import OTHER_DRUMS, generate, true_torque
+
+    grid = np.linspace(0.0, 3600.0, 121)
+    for seed in range(4):
+        drum, hidden = (OTHER_DRUMS["thick_soft_lining"], []) if seed % 2 else ({}, ["gap"])
+        data = generate(hidden, sampling="5min", seed=900 + seed, directions=("downhill",),
+                        forces=np.linspace(180.0, 340.0, 3), drum=drum)
+        model = diagnose(data).model
+        assert "gap_m" in model.covariance.names
+        assert "gap_m" not in draw_values(model, 50, 0) and draw_values(model, 500, 0, marginal=True)["gap_m"].min() >= 0
+
+        def truth(grade, direction):
+            tq = true_torque(300.0, grid, direction, drum=drum, t0=200.0, effects=hidden)
+            return float(np.min(2 * tq / float(required_torque(model.params, grade, 1))))
+
+        def bands(direction):
+            grade = brentq(lambda g: truth(g, direction) - 1.0, 0.2, 80.0)
+            kw = dict(hand_force_N=300.0, grade_pct=grade, direction=direction, occupants=1, duration_s=3600.0,
+                      initial_temp_C=200.0, draws=400, seed=1)
+            new = draws.rollaway_risk(model, **kw).brake_margin_percentiles
+            with mock.patch.object(draws, "untested_direction", lambda m, d: False):
+                old = draws.rollaway_risk(model, **kw).brake_margin_percentiles
+            return new, old
+        new, old = bands("uphill")
+        assert new["p5"] <= 1.0 <= new["p95"], (seed, new)
+        assert new["p50"] < old["p50"] - 0.01, (seed, new, old)
+        new, old = bands("downhill")
+        assert new == old

@@ -26,7 +26,6 @@ from rollaway.identify.ambiguity import (MAX_RIVALS, alternative_words, closest,
                                         weak_alternatives)
 from rollaway.identify.calibrate import FitResult, calibrate, evaluate
 from rollaway.identify.coarse import MAX_WINDOW_S, coarsen
-from rollaway.model.drum_parameters import NOT_DRAWN
 from rollaway.identify.drum import DrumCalibration, calibrate_drum, free_needed, predictive_covariance, recheck
 from rollaway.identify.diagnosis import Diagnosis
 from rollaway.identify.fitting import single_blas_thread
@@ -258,9 +257,8 @@ def diagnose(data: Measurements, params=None, effects=None, *, noise_torque_Nm: 
                 [a["fit"] for a in rivalry if a.get("kind") == "rival" and not a.get("channel")], (nq, nt))
     alts = refined.fit_info.get("alternatives") or []
     restate(refined, mixture_variances(refined, alts) or covariance_variances(refined))
-    for f in [refined] + [f for _, f in alts]:        # the bands draw with the held gap at the set's value
-        if f.covariance is not None:
-            f.covariance = f.covariance.conditional(NOT_DRAWN)
+    # the covariance keeps the held gap: the bands condition on the set's gap, except facing an untested direction
+    # (rollaway.uncertainty.draws.draw_values)
     drum.update(refined)
     refined.fit_info["calibration"] = drum.record()
     ev.append(_interval_words(refined, drum, alts))

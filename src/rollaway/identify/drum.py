@@ -72,7 +72,8 @@ class ParameterStatus:
             tail = f"  (assumed {self.assumed_value:.4g}; stands for the {p.stands_for})"
         else:
             head = f"{self.status:<13} {self.value:.5g} {p.unit}"
-            where = "in the bands" if p.drawn else "in the parameter intervals, held in the bands"
+            where = "in the bands" if p.drawn else ("in the parameter intervals, held in the bands (drawn facing "
+                                                    "an untested direction)")
             tail = f"  — {self.reason}" + (f" (kept as ±{self.prior_sd:.2g} {p.unit} {where} [assumed])"
                                             if self.prior_sd else "")
         return f"  {self.name:<21} {head}{tail}"

@@ -40,7 +40,9 @@ draw it (``drawn=False``): the road margin follows the torque the data pin, not 
 and l_g (refitted along that valley from 0 to 1.5 mm the margins of a campaign move 0.6 % inside the
 tested range and 1.3 % 80 °C hotter), while drawing the split from the linearised covariance widened the
 bands by half again; they draw the covariance conditional on the set's gap
-(:meth:`rollaway.model.covariance.Covariance.conditional`).  ``--free gap_m`` fits it (rarely
+(:meth:`rollaway.model.covariance.Covariance.conditional`) — except facing a direction the bench did not
+test, where the split decides the torque (μ_d sets the self-energising factor, the gap does not) and the gap is
+drawn with μ_d (:func:`rollaway.uncertainty.draws.draw_values`).  ``--free gap_m`` fits it (rarely
 identifiable); a fitted ``installation_gap`` effect takes its place.
 """
 from __future__ import annotations

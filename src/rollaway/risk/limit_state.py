@@ -148,7 +148,7 @@ def model_draws(population, n: int, rng: np.random.Generator) -> dict | None:
     (:func:`rollaway.uncertainty.predictive.extrapolation`).
     """
     from rollaway.uncertainty.draws import (draw_values, mixture_parts, own_record, torque_level_ratio,
-                                            zero_torque_force)
+                                            untested_direction, zero_torque_force)
     from rollaway.physics.drum import direction_sign
     from rollaway.uncertainty.predictive import edge_sd, extrapolation, model_error_draws
 
@@ -163,7 +163,8 @@ def model_draws(population, n: int, rng: np.random.Generator) -> dict | None:
         idx = np.flatnonzero(owner == k)
         fitted = {}
         if m.covariance is not None and idx.size:
-            d = _draw_chunked(m, idx.size, int(rng.integers(2**31)), draw_values)
+            d = _draw_chunked(m, idx.size, int(rng.integers(2**31)), draw_values,
+                              untested_direction(model, population.directions[0]))
             centre = m.fitted_values()
             for name, v in d.items():
                 if name == "shoe_arm_ratio":
@@ -194,9 +195,9 @@ def model_draws(population, n: int, rng: np.random.Generator) -> dict | None:
     return {"groups": groups, "effects": effects, "eps": eps}
 
 
-def _draw_chunked(model, n, seed, draw_values):
+def _draw_chunked(model, n, seed, draw_values, marginal=False):
     step = 1_000_000
-    parts = [draw_values(model, min(step, n - lo), seed + lo) for lo in range(0, n, step)]
+    parts = [draw_values(model, min(step, n - lo), seed + lo, marginal) for lo in range(0, n, step)]
     return {k: np.concatenate([p[k] for p in parts]) for k in parts[0]}
 
 

@@ -13,7 +13,7 @@ from dataclasses import dataclass
 
 import numpy as np
 
-from rollaway.model.drum_parameters import LEGACY_FREE
+from rollaway.model.drum_parameters import LEGACY_FREE, NOT_DRAWN
 from rollaway.errors import UserError
 from rollaway.model.drum_model import DrumModel
 
@@ -21,14 +21,19 @@ MAX_REJECTION_ROUNDS = 50
 PERCENTILES = (5.0, 50.0, 95.0)
 
 
-def draw_values(model: DrumModel, n: int, seed: int | None = 0) -> dict[str, np.ndarray]:
-    """N draws of the fitted values from the model's covariance, within bounds: {name: (n,) array}."""
+def draw_values(model: DrumModel, n: int, seed: int | None = 0, marginal: bool = False) -> dict[str, np.ndarray]:
+    """N draws of the fitted values from the model's covariance, within bounds: {name: (n,) array}.
+
+    The covariance is taken conditional on the held parameters the bands do not draw
+    (:data:`~rollaway.model.drum_parameters.NOT_DRAWN`: the installation gap, at the set's value) — in a tested
+    direction the road margin follows the torque the data pin, not how it splits between μ_d and the gap.
+    *marginal*: draw them too (a direction the bench did not test, where that split decides the torque)."""
     if model.covariance is None:
         raise UserError(f"model '{model.name}' has no [covariance]; save a fitted model with 'rollaway fit DATA "
                         f"--save-model FILE.toml' (or add a [covariance] table) to use --uncertainty")
     if not (isinstance(n, (int, np.integer)) and 1 <= n <= 1_000_000):
         raise UserError(f"--uncertainty {n} must be a whole number of draws from 1 to 1000000, e.g. 1000")
-    c = model.covariance
+    c = model.covariance if marginal else model.covariance.conditional(NOT_DRAWN)
     fitted = model.fitted_values()
     mean = np.array([fitted[k] for k in c.names], float)
     lo = np.array([model.bounds(k)[0] for k in c.names])
@@ -116,12 +121,13 @@ class Risk:
 
 
 def _least_margins(model: DrumModel, n: int, seed, force_N: float, sign: float, t_req_Nm: np.ndarray,
-                   initial_temp_C, duration_s: float):
-    """Parameter draws of *model* (none without a covariance) and each draw's least brake margin."""
+                   initial_temp_C, duration_s: float, marginal: bool = False):
+    """Parameter draws of *model* (none without a covariance; *marginal*: :func:`draw_values`) and each draw's
+    least brake margin."""
     from rollaway.hold import validate_hand_force
     from rollaway.hold.numeric import MarginFunction, least_margin
 
-    vals = draw_values(model, n, seed) if model.covariance is not None else {}
+    vals = draw_values(model, n, seed, marginal) if model.covariance is not None else {}
     mu = vals.get("mu_drum", np.full(n, model.params.mu_drum))
     fn = MarginFunction(model, np.full(n, float(validate_hand_force(force_N))), np.full(n, float(sign)),
                         t_req_Nm, mu, None, initial_temp_C, heat_transfer_W_m2K=vals.get("heat_transfer_W_m2K"),
@@ -167,6 +173,15 @@ def mixture_parts(model: DrumModel, direction: str | None = None) -> list[tuple[
         s, k = UNTESTED_DIRECTION_SHARE, len(parts)
         parts = [(s * w + (1.0 - s) / k, m) for w, m in parts]
     return parts
+
+
+def untested_direction(model: DrumModel, direction: str | None) -> bool:
+    """True when *model*'s bench tested only the other direction: there the torque's split between μ_d and the
+    held installation gap (the same torque in the tested direction, eq. 16b against eqs. 18–21) is drawn too
+    (:func:`draw_values` ``marginal``): a gap or a thicker lining than assumed leaves μ_d fitted low, and a μ_d too low
+    predicts too much torque the other way."""
+    dirs = model.predictive.get("tested_directions")
+    return bool(direction and dirs and direction not in dirs)
 
 
 def own_record(pred: dict, part: DrumModel) -> dict:
@@ -227,7 +242,8 @@ def rollaway_risk(model: DrumModel, *, hand_force_N: float, grade_pct: float, di
             continue
         idx = np.flatnonzero(owner == k)
         vals, fn, least = _least_margins(m, int(c), None if seed is None else seed + k, hand_force_N, sign,
-                                         t_req / (1.0 + eps[idx]), initial_temp_C, duration_s)
+                                         t_req / (1.0 + eps[idx]), initial_temp_C, duration_s,
+                                         untested_direction(model, direction))
         brake[idx] = least
         if k == 0:
             vals0 = vals
@@ -281,7 +297,8 @@ def least_force_band(model: DrumModel, grades_pct, direction: str, occupants: in
     for k, ((_, m), c) in enumerate(zip(parts, counts)):
         if c == 0:
             continue
-        vals = draw_values(m, int(c), None if seed is None else seed + k) if m.covariance is not None else {}
+        vals = draw_values(m, int(c), None if seed is None else seed + k, untested_direction(model, direction)) \
+            if m.covariance is not None else {}
         eps = model_error_draws(own_record(model.predictive, m), int(c), factor, rng)
         g, sign = _effective(grades, direction)
         t_req = np.asarray(required_torque(m.params, g, occupants), float)
