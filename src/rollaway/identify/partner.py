@@ -132,7 +132,9 @@ def own_evidence(data, params, chosen, current, struct, fits, nq, nt, steps, ev,
     """Keep the second of two selected effects only if it predicts held-out tests better than the first
     re-formed, with the brake parameters *refree* (held as not needed by the bare drum) freed in both
     (:func:`beyond_reform`); else the effect of *names* that does beside the first re-formed
-    (:func:`beside_reformed`), or none: keep the first alone.  Logs to *steps*, explains in *ev*;
+    (:func:`beside_reformed`), or none: keep the first alone.  A pair that passes is kept only if the first, in
+    turn, predicts better than the second re-formed; else the second alone (the first only absorbed its form
+    mismatch: a friction change beside a creep whose catalogue law flattens too early).  Logs to *steps*, explains in *ev*;
     returns (chosen, current fit, its structure, fits per step).
 
     The first is the one that explains more alone (lower BIC, both refitted with the same brake parameters): the
@@ -153,7 +155,18 @@ def own_evidence(data, params, chosen, current, struct, fits, nq, nt, steps, ev,
     reform = own.pop("also")
     steps.append({"step": "own evidence", "effect": chosen[1], "kept": own["passes"], "beyond_reform": own})
     if own["passes"]:
-        return chosen, current, struct, fits
+        back = beyond_reform(data, params, chosen[1:], current, current, refree)
+        if back is None or back["passes"]:
+            return chosen, current, struct, fits
+        back.pop("also", None)                  # the first is not beyond the second re-formed: a partner too
+        steps.append({"step": "own evidence of the first", "effect": chosen[0], "kept": False, "beyond_reform": back})
+        second = by_name[chosen[1]]
+        ev.append(f"{chosen[1]} predicts held-out tests better beside {chosen[0]} than {chosen[0]} re-formed, but "
+                  f"{chosen[0]} does not beside {chosen[1]} re-formed (its hook as a linear spline, no second effect): "
+                  f"held-out log score {back['heldout_elpd']:+.1f} ± {back['heldout_se']:.1f}, better in "
+                  f"{back['better_tests']} of {back['tests']} tests — {chosen[0]} only absorbed {chosen[1]}'s form "
+                  f"mismatch; {chosen[1]} is named alone.")
+        return [chosen[1]], second, structure(second, nq, nt), [second]
     other = beside_reformed(data, params, chosen[0], first, names, nq, nt,
                             reform=reform[0] if reform else None) if names else None
     if other is not None:
