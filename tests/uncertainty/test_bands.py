@@ -263,14 +263,6 @@ def test_the_chosen_effect_in_the_datas_own_form_competes_in_the_bands(monkeypat
     assert len(rows) == 4 and all(r["covered"] for r in rows), rows
 
 
-def test_a_competitor_is_excluded_for_per_test_effects_only_not_for_each_tests_start_temperature():
-    from rollaway.identify.calibrate import calibrate
-    from rollaway.identify.diagnose import _per_test_effect
-    data = generate([], seed=3, forces=np.linspace(180.0, 360.0, 3))
-    assert not _per_test_effect(calibrate(data, ["lining_creep"]))
-    assert _per_test_effect(calibrate(data, ["torque_zero_offset"]))
-
-
 def test_a_rival_the_data_cannot_tell_from_the_verdict_keeps_its_bic_weight_in_the_bands():
     """A lining modulus falling with temperature, tested downhill only (campaign 41 of band_questions): friction and
     modulus have the same BIC (+0.1) and a held-out difference inside the preference margin (−4.0 ± 2.3 over 4

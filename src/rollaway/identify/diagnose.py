@@ -16,6 +16,8 @@
    catalogue remains).
 4. A second effect is named only on its own evidence (:func:`rollaway.identify.partner.own_evidence`); a
    ``none`` verdict may carry weak alternatives (:func:`rollaway.identify.ambiguity.weak_alternatives`).
+5. The chosen model gets what the road bands draw: its predictive record and the competing effect sets
+   (:mod:`rollaway.identify.predictive_set`).
 """
 from __future__ import annotations
 
@@ -26,7 +28,7 @@ from rollaway.identify.ambiguity import (MAX_RIVALS, alternative_words, closest,
                                         weak_alternatives)
 from rollaway.identify.calibrate import FitResult, calibrate, evaluate
 from rollaway.identify.coarse import MAX_WINDOW_S, coarsen
-from rollaway.identify.drum import DrumCalibration, calibrate_drum, free_needed, predictive_covariance, recheck
+from rollaway.identify.drum import calibrate_drum, free_needed, predictive_covariance, recheck
 from rollaway.identify.diagnosis import Diagnosis
 from rollaway.identify.fitting import single_blas_thread
 from rollaway.identify.memo import memoised
@@ -36,6 +38,7 @@ from rollaway.bench.noise import Noise, noise_estimate, sample_sigma
 from rollaway.identify.detection import detection_limits, hidden_shifts, hidden_words, limits_words
 from rollaway.identify.diagnose_words import describe_residual, no_candidate_words, noise_words, structure_words
 from rollaway.identify.partner import own_evidence
+from rollaway.identify.predictive_set import attach_predictive, interval_words
 from rollaway.identify.shape import channel_alternatives, form_rivals, other_form_rivals, shape_rivals
 from rollaway.identify.selection import (BIC_THRESHOLD, SCREEN_ITERATIONS, Candidate, cv_score, eliminate, exchange,
                                          folds, forward_step, has_per_test, per_test_signature, structure,
@@ -243,9 +246,10 @@ def diagnose(data: Measurements, params=None, effects=None, *, noise_torque_Nm: 
         ev.append(limits_words(limits))
     forms += channels
     pool = [base] + [c.fit for c in first_cands]
+    kept = [a["fit"] for a in rivalry + weak]                 # named beside the verdict: always in the bands
+    ties = [a["fit"] for a in rivalry if a.get("kind") == "rival" and not a.get("channel")]   # at least BIC weight
     if data is not full:                                  # the chosen model, refitted on every row
-        _predictive(data, refined, pool, len(selected), drum, misfit, [a["fit"] for a in rivalry + weak], forms,
-                    [a["fit"] for a in rivalry if a.get("kind") == "rival" and not a.get("channel")], (nq, nt))
+        attach_predictive(data, refined, pool, len(selected), drum, misfit, kept, forms, ties, (nq, nt))
         alts, pool = refined.fit_info.get("alternatives", []), []
         refined = calibrate(full, refined.effects, params, start=refined.values)
         refined.fit_info["alternatives"] = alts
@@ -253,33 +257,20 @@ def diagnose(data: Measurements, params=None, effects=None, *, noise_torque_Nm: 
                   f"{MAX_WINDOW_S:g} s); the chosen model was refitted on all {len(full)} rows.")
         data = full
     refined.covariance = predictive_covariance(refined, drum.fixed_priors(), ess_inflation(refined))
-    _predictive(data, refined, pool, len(selected), drum, misfit, [a["fit"] for a in rivalry + weak], forms,
-                [a["fit"] for a in rivalry if a.get("kind") == "rival" and not a.get("channel")], (nq, nt))
+    attach_predictive(data, refined, pool, len(selected), drum, misfit, kept, forms, ties, (nq, nt))
     alts = refined.fit_info.get("alternatives") or []
     restate(refined, mixture_variances(refined, alts) or covariance_variances(refined))
     # the covariance keeps the held gap: the bands condition on the set's gap, except facing an untested direction
     # (rollaway.uncertainty.draws.draw_values)
     drum.update(refined)
     refined.fit_info["calibration"] = drum.record()
-    ev.append(_interval_words(refined, drum, alts))
+    ev.append(interval_words(refined, drum, alts))
     hidden = hidden_shifts(data, refined)
     if hidden_words(refined, hidden):
         ev.append(hidden_words(refined, hidden))
     return Diagnosis(data, paper, base, nq, nt, first_cands, verdict, indist, refined,
                      remaining, struct, base_cv, ev, selected, steps, shape, drum, rivalry + weak, diagnose,
                      detection=limits, hidden=hidden)
-
-
-def _interval_words(fit: FitResult, drum: DrumCalibration, alts) -> str:
-    k = ess_inflation(fit)
-    fixed = sorted(drum.fixed_priors())
-    return ("Parameter intervals count " + "; ".join(filter(None, [
-        "autocorrelated residuals (variance × " + ", ".join(f"{v:.2g} {ch}" for ch, v in k.items()) + ")",
-        f"the assumed spread of {', '.join(fixed)} (held, not known)" if fixed else "",
-        f"{len(alts)} competing effect set{'s' if len(alts) > 1 else ''} (mixture, also in the bands: "
-        + ", ".join(f"{' + '.join(f.effects) or 'the drum alone'} {w:.0%}" for w, f in alts)
-        + f", {' + '.join(fit.effects) or 'the drum alone'} the rest)" if alts else ""]))
-        + " (rollaway.identify.intervals).")
 
 
 def _rivals(selected: list[dict], first: list[Candidate], base_cv, tested: dict, nq: Noise) -> list[dict]:
@@ -336,63 +327,6 @@ def _partial(data, params, base: FitResult, refined: FitResult, chosen: list[str
         if not s["structured"]:
             return name, float(share), shape_curves(eff, refined, fit, flex), s
     return None
-
-
-def _predictive(data, refined: FitResult, pool: list[FitResult], n_effects: int, drum: DrumCalibration,
-                misfit: bool | str = False, keep=(), forms=(), ties=(), noise=None) -> None:
-    """Attach the predictive record (model error, tested range) and the competing effect sets with their
-    weights to *refined* (``fit_info``), for the saved model (:mod:`rollaway.uncertainty.bands`).  *misfit*:
-    the saved model's form is known to leave structure (``"partial"``: an effect named "partial";
-    ``"unexplained"``: structure no catalogue form clears): its model error is widened
-    (:func:`rollaway.uncertainty.bands.model_error`).  *keep*: fits the data
-    cannot tell from *refined* (named beside the verdict): always among the alternatives, those of them named as
-    rivals (*ties*) with at least their BIC weight (:func:`rollaway.uncertainty.bands.alternatives`); *forms*: *refined*'s set
-    with each effect shape-free (:func:`rollaway.identify.shape.form_rivals`; where *misfit* is set, also with an
-    effect exchanged for a spline of another quantity along its covariate, :func:`rollaway.identify.shape.
-    channel_rivals`), competing too.  A fit competes when
-    its BIC is within :data:`rollaway.uncertainty.bands.COMPETING_BIC` of *refined*'s or the held-out prediction
-    does not rule it out (BIC alone is overconfident where residuals are autocorrelated); not a fit with per-test
-    values (a zero offset per test): its held-out score refits the held-out test's own values.  Each alternative
-    carries its own model error: widened as "partial" when its residual is structured (*noise*: the channels'
-    :class:`~rollaway.bench.noise.Noise`, for the test); a catalogue form never below *refined*'s when *misfit* is
-    set (the structure the verdict leaves says no catalogue form is right).  A shape-free set errs by its own
-    held-out record: which quantity changes is carried by the channel rivals' weights, not by a floor."""
-    from rollaway.identify.ambiguity import not_ruled_out
-    from rollaway.uncertainty.bands import COMPETING_BIC, alternatives, model_error
-    from rollaway.model.predictive_record import record
-    val = validity(data)
-    refined.fit_info["predictive"] = record(model_error(refined, misfit), val)
-    if not pool:                  # the alternatives were weighed on the selection's rows (already attached)
-        return
-    comp = [f for f in pool if f is not refined and f.jacobian is not None and len(f.effects) <= 1
-            and not _per_test_effect(f)                 # refits the held-out test's own values: no fair score
-            and (f.bic - refined.bic < COMPETING_BIC or not_ruled_out(refined, f))] if n_effects <= 1 else []
-    comp += [f for f in forms if not _per_test_effect(f) and all(f is not g for g in keep)]   # the data's own form
-    mix = alternatives(refined, comp + [f for f in keep if all(f is not g for g in comp)], keep=keep, ties=ties)
-    alts = []
-    for w, f in mix:
-        if f is refined:
-            continue
-        f.covariance = predictive_covariance(f, drum.fixed_priors(), ess_inflation(f))
-        own = misfit if noise is None else (misfit or "partial") if structure(f, *noise)["structured"] else False
-        err = model_error(f, own)
-        if misfit == "unexplained" or misfit and not _shape_free(f):   # no catalogue form errs less than the verdict
-            err["rel_sd"] = max(err["rel_sd"], refined.fit_info["predictive"]["model_error_rel_sd"])
-        f.fit_info["predictive"] = record(err, val)
-        f.fit_info["calibration"] = drum.record()
-        alts.append((w, f))
-    refined.fit_info["alternatives"] = alts
-
-
-def _shape_free(fit: FitResult) -> bool:
-    """True when an effect of *fit* is a shape-free form (:mod:`rollaway.effects.shape_free`)."""
-    from rollaway.effects.shape_free import is_shape_free
-    return any(is_shape_free(e) for e in fit.model.effects)
-
-
-def _per_test_effect(fit: FitResult) -> bool:
-    """True when an effect of *fit* has values per test (each test's T_0, which every fit has, aside)."""
-    return any(p.per_test for e in fit.model.effects for p in e.parameters)
 
 
 def _test_offsets(fit: FitResult, nq: Noise) -> bool:
