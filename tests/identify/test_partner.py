@@ -163,3 +163,26 @@ def test_a_true_pair_keeps_both_in_the_reverse_test_too(pair, seed):
     d = diagnose(generate(pair, sampling="5min", seed=seed))
     assert len(d.effects) == 2
     assert not any(s.get("step") == "own evidence of the first" for s in d.steps), d.steps
+
+
+@pytest.mark.parametrize("source,index", [("names", 309), ("two", 62)])
+def test_a_spline_re_form_on_few_tests_is_judged_by_refitting_the_folds(source, index):
+    """A sigmoid modulus drop on three or four tests (held-out campaign 309; two-effect campaign 62, a sigmoid and a
+    linear modulus change): friction_temperature beside modulus_temperature beat the modulus spline on held-out tests
+    only through the linearised leave-one-test-out, whose step along the spline's directions that one test alone
+    informs is huge (a held-out χ² of 56 500 against 855 refitted).  Refitted folds: no partner."""
+    if source == "names":
+        from tests.identify.heldout_names import campaign
+        hidden, data = campaign(index)
+        hidden = [hidden]
+    else:
+        from tests.uncertainty.band_questions import two_effect_data
+        hidden, *_, data, _ = two_effect_data(index)
+    assert set(hidden) <= {"modulus_sigmoid", "modulus_linear"} and data.n_tests <= 4
+    d = diagnose(data)
+    assert [e["effect"] for e in d.effects] == ["modulus_temperature"], d.summary()
+    step = next(s for s in d.steps if s.get("step") == "own evidence")
+    assert step["effect"] == "friction_temperature" and not step["kept"]
+    judged = step["beyond_reform"]
+    assert judged["heldout"] == "refitted" and judged["refitted_folds"][0] >= 1      # the spline's folds
+    assert judged["linearised"]["heldout_elpd"] > judged["heldout_elpd"]

@@ -30,11 +30,10 @@ from rollaway.bench.measurements import Measurements
 from rollaway.identify.model import INITIAL_TEMP, BenchModel, ambient_varies
 
 MAX_OUTER = 4
-MAX_ITERATIONS = 25          # Levenberg–Marquardt iterations per pass (a fit that needs more is degenerate)
+MAX_ITERATIONS = 25          # a pass's MINPACK budget: MAX_ITERATIONS·(k + 1) residual calls (SciPy ≥ 1.16 counts
+                             # them without the Jacobian's difference quotients: up to that many iterations; see
+                             # docs/identification.md, "The screens' budget, measured")
 _single_thread = False
-import os
-_F = os.environ.get('ROLLAWAY_NFEV_FACTOR')
-_NFEV = (lambda n: n + 1) if not _F else (lambda n: int(_F))
 
 
 def single_blas_thread(func):
@@ -172,7 +171,7 @@ class Problem:
 
             if names:
                 res = optimize.least_squares(fun, z, method="lm", xtol=tol, ftol=tol, gtol=tol,
-                                             max_nfev=max_iterations * _NFEV(len(names)))
+                                             max_nfev=max_iterations * (len(names) + 1))
                 z = res.x
                 vals.update(zip(names, to_x(z)))
             r_lin, step, _, _ = self.profile(vals)

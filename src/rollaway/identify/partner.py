@@ -13,9 +13,9 @@ import numpy as np
 from rollaway.bench.noise import Noise
 from rollaway.identify.calibrate import FitResult, calibrate
 from rollaway.identify.workers import fit_all
+from rollaway.uncertainty.heldout import loto_residuals
 from rollaway.identify.selection import (BIC_THRESHOLD, REFORM_ITERATIONS, SCREEN_ITERATIONS, SECOND_EFFECT_SE,
                                          structure)
-from rollaway.uncertainty.heldout import loto_residuals
 
 
 def beyond_reform(data, params, chosen: list[str], current: FitResult, two: FitResult, refree=(),
@@ -77,14 +77,33 @@ def beyond_reform(data, params, chosen: list[str], current: FitResult, two: FitR
 
 def _heldout_preference(d, two: FitResult, reform: FitResult) -> dict:
     """Held-out comparison of *two* against *reform* (:func:`beyond_reform`'s rule, without its BIC condition).
-    Where *two* has per-test values that *reform* lacks, within each test (:func:`_within_tests`)."""
+    Where *two* has per-test values that *reform* lacks, within each test (:func:`_within_tests`).
+
+    The held-out residuals are first the linearised leave-one-test-out (:func:`rollaway.uncertainty.heldout.
+    loto_residuals`); a comparison that passes on them is decided again on refitted folds
+    (:func:`rollaway.identify.refit_heldout.refit_loto_residuals`, ``"heldout": "refitted"``): a flexible form on
+    few tests has directions one test alone informs, where the linear step, and the advantage it gives the pair,
+    can be spurious; only the folds whose linear step fails its check are refitted (``"refitted_folds"``, per fit).
+    One that fails on them stays failed: the second effect is then not named either way."""
+    from rollaway.identify.refit_heldout import refit_loto_residuals
+    out = _preference(d, two, reform, [loto_residuals(reform), loto_residuals(two)])
+    out["heldout"] = "linearised"
+    if out["passes"]:
+        held, refitted = refit_loto_residuals([reform, two])
+        if any(refitted):
+            out = {**_preference(d, two, reform, held), "heldout": "refitted", "refitted_folds": refitted,
+                   "linearised": {k: out[k] for k in ("heldout_elpd", "heldout_se", "better_tests")}}
+    return out
+
+
+def _preference(d, two: FitResult, reform: FitResult, held: list[np.ndarray]) -> dict:
+    """:func:`_heldout_preference`'s rule on the held-out residuals *held* of [*reform*, *two*]."""
     from rollaway.identify.ambiguity import HELDOUT_SE, SMALL_ELPD
     n = len(d)
     out = {"channels": {}}
     per = {}
     within = _own_level_channels(two) - _own_level_channels(reform)
-    for key, fit in (("reform", reform), ("two", two)):
-        r = loto_residuals(fit)
+    for key, r in (("reform", held[0]), ("two", held[1])):
         if within:
             r = _within_tests(d, r, within)
         r2 = r ** 2

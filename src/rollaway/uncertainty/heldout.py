@@ -55,6 +55,18 @@ def held_out(fit, held) -> tuple[np.ndarray, np.ndarray, object]:
     return g, rg + jg @ solve(jg.T @ rg), solve
 
 
+def linear_step(fit, held) -> tuple[np.ndarray, np.ndarray, np.ndarray]:
+    """(rows g of [temperature | torque] of the tests *held*, their linearised held-out standardised residuals, and
+    the step of the free parameters (``fit.names``, in their own units) that leaving those tests out takes in the
+    linearisation: Δθ = (JᵀJ − J_gᵀJ_g)⁺·J_gᵀ·r_g).  Needs a Jacobian."""
+    d = fit.data
+    j = np.where(np.isfinite(fit.jacobian), fit.jacobian, 0.0)
+    norms = np.sqrt(np.maximum((j * j).sum(axis=0), 1e-300))
+    g, loo, solve = held_out(fit, held)
+    jg = j[g] / norms
+    return g, loo, solve(jg.T @ _standardised(fit)[g]) / norms
+
+
 def loto_residuals(fit) -> np.ndarray:
     """Standardised residuals (model − measured)/σ, [temperature | torque], of every sample as
     predicted with its own test (its fold) left out of the calibration: the linearised
@@ -102,5 +114,5 @@ def loto_scores(fit) -> np.ndarray:
     return np.bincount(np.concatenate([d.test_index, d.test_index]), loto * loto, d.n_tests)
 
 
-__all__ = ["FOLDS", "LOO_TESTS", "folds", "held_out", "loto_parameter_variance", "loto_residuals", "loto_scores",
-           "parameter_variance"]
+__all__ = ["FOLDS", "LOO_TESTS", "folds", "held_out", "linear_step", "loto_parameter_variance", "loto_residuals",
+           "loto_scores", "parameter_variance"]
