@@ -186,3 +186,4 @@ def test_a_spline_re_form_on_few_tests_is_judged_by_refitting_the_folds(source, 
     judged = step["beyond_reform"]
     assert judged["heldout"] == "refitted" and judged["refitted_folds"][0] >= 1      # the spline's folds
     assert judged["linearised"]["heldout_elpd"] > judged["heldout_elpd"]
+    assert any("refitted where a linear step failed its check" in w for w in d.evidence)

@@ -45,7 +45,7 @@ def test_a_refitted_fold_agrees_with_the_linear_step_where_the_model_is_well_det
     np.testing.assert_allclose(refit, linear, rtol=0.03)     # within 1.1 % measured
     assert refit.sum() > own.sum()                            # a test left out is predicted worse than fitted
     held, refitted = refit_loto_residuals([fit])
-    assert refitted[0] <= 1                                   # a check may refit a fold it need not have (0, 1 measured)
+    assert refitted[0] <= 1                    # a check may refit a fold it need not have (0, 1 measured)
     np.testing.assert_allclose(_chi2(data, held[0]), linear, rtol=0.03)
 
 
@@ -108,7 +108,8 @@ def test_a_fold_the_solver_cannot_refit_keeps_its_linear_step(monkeypatch):
 
     def failing(*args, **kwargs):
         if kwargs.get("max_iterations") == FOLD_ITERATIONS:
-            raise ValueError("Method 'lm' doesn't work when the number of residuals is less than the number of variables.")
+            raise ValueError("Method 'lm' doesn't work when the number of residuals is less than the number of "
+                             "variables.")
         return real(*args, **kwargs)
     monkeypatch.setattr(calibrate_module, "calibrate", failing)
     held, refitted = refit_loto_residuals([fit])

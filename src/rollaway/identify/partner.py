@@ -125,6 +125,16 @@ def _preference(d, two: FitResult, reform: FitResult, held: list[np.ndarray]) ->
     return out
 
 
+def _refit_words(pref: dict) -> str:
+    """What :func:`_heldout_preference` refitted, in words ("" when the linearised comparison stood)."""
+    if pref.get("heldout") != "refitted":
+        return ""
+    n_reform, n_two = pref["refitted_folds"]
+    lin = pref["linearised"]
+    return (f" (held-out tests refitted where a linear step failed its check: {n_reform} of the re-formed fit's, "
+            f"{n_two} of the pair's; linearised {lin['heldout_elpd']:+.1f} ± {lin['heldout_se']:.1f})")
+
+
 def _own_level_channels(fit: FitResult) -> set[str]:
     """The channels in which an effect of *fit* with values per test (a zero offset per test) sets each test's own
     level: the torque, and the drum temperature where such an effect changes it."""
@@ -183,8 +193,8 @@ def own_evidence(data, params, chosen, current, struct, fits, nq, nt, steps, ev,
         ev.append(f"{chosen[1]} predicts held-out tests better beside {chosen[0]} than {chosen[0]} re-formed, but "
                   f"{chosen[0]} does not beside {chosen[1]} re-formed (its hook as a linear spline, no second effect): "
                   f"held-out log score {back['heldout_elpd']:+.1f} ± {back['heldout_se']:.1f}, better in "
-                  f"{back['better_tests']} of {back['tests']} tests — {chosen[0]} only absorbed {chosen[1]}'s form "
-                  f"mismatch; {chosen[1]} is named alone.")
+                  f"{back['better_tests']} of {back['tests']} tests{_refit_words(back)} — {chosen[0]} only absorbed "
+                  f"{chosen[1]}'s form mismatch; {chosen[1]} is named alone.")
         return [chosen[1]], second, structure(second, nq, nt), [second]
     other = beside_reformed(data, params, chosen[0], first, names, nq, nt,
                             reform=reform[0] if reform else None) if names else None
@@ -194,14 +204,15 @@ def own_evidence(data, params, chosen, current, struct, fits, nq, nt, steps, ev,
         ev.append(f"{chosen[1]} is not beyond {chosen[0]} re-formed, but beside {chosen[0]} re-formed (its hook as a "
                   f"linear spline) {name} lowers BIC by {-dbic:.1f} and predicts held-out tests better (log score "
                   f"{pref['heldout_elpd']:+.1f} ± {pref['heldout_se']:.1f}, better in {pref['better_tests']} of "
-                  f"{pref['tests']} tests): a mis-formed {chosen[0]} hid it; {name} is named on that evidence.")
+                  f"{pref['tests']} tests{_refit_words(pref)}): a mis-formed {chosen[0]} hid it; {name} is named on "
+                  f"that evidence.")
         return [chosen[0], name], pair, structure(pair, nq, nt), [first, pair]
     ev.append(f"{chosen[1]} lowers BIC and predicts held-out tests better beside {chosen[0]}, but not beyond "
               f"{chosen[0]} re-formed (its hook as a linear spline, no second effect"
               + (f"; {', '.join(refree)} freed in both" if refree else "") + "): held-out log score "
               f"{own['heldout_elpd']:+.1f} ± {own['heldout_se']:.1f}, better in {own['better_tests']} of "
-              f"{own['tests']} tests — a partner that only absorbs the first effect's form mismatch or a departure "
-              f"of the drum; not named.")
+              f"{own['tests']} tests{_refit_words(own)} — a partner that only absorbs the first effect's form "
+              f"mismatch or a departure of the drum; not named.")
     return chosen[:1], first, structure(first, nq, nt), [first]
 
 

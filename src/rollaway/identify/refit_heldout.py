@@ -9,9 +9,9 @@ with that test left out they are nearly singular, and the linear step along them
 Where that comparison decides whether an effect is *named* — a second effect against the first re-formed
 (:mod:`rollaway.identify.partner`) — each fold's linear step is checked by one model evaluation
 (:func:`linear_holds`): the step is kept when it stays within the parameters' bounds and the model there gives
-the held-out tests the χ² the linearisation predicts; otherwise the fold is refitted: the globals on the other tests (started at the full fit, :data:`FOLD_ITERATIONS`), then the
-held-out tests' own values (T_0, per-test effect values) on those tests with the globals fixed, as the
-linearisation profiles them.
+the held-out tests the χ² the linearisation predicts; otherwise the fold is refitted: the globals on the other
+tests (started at the full fit, :data:`FOLD_ITERATIONS`), then the held-out tests' own values (T_0, per-test
+effect values) on those tests with the globals fixed, as the linearisation profiles them.
 """
 from __future__ import annotations
 
