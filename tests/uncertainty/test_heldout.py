@@ -6,7 +6,7 @@ from types import SimpleNamespace
 import numpy as np
 
 from rollaway.uncertainty.bands import model_error
-from rollaway.uncertainty.heldout import loto_parameter_variance, loto_residuals
+from rollaway.uncertainty.heldout import linear_step, loto_parameter_variance, loto_residuals
 from rollaway.uncertainty.predictive import model_error_sd
 
 
@@ -55,6 +55,27 @@ def test_held_out_residual_variance_is_noise_plus_the_refit_term():
                         first.data.n_tests) for _ in range(3000)]
     var = np.var(np.array(sums), axis=0)
     assert np.allclose(var, expect, rtol=0.1), (var, expect)
+
+
+def test_the_linear_step_is_the_refit_of_a_linear_model():
+    """For a model linear in its parameters the Woodbury step is exact: leaving a test out moves the parameters
+    (all but the held test's own offset, which only its rows inform) to the least-squares fit of the other tests,
+    and the held-out residuals are the residuals there."""
+    rng = np.random.default_rng(5)
+    test_index, jac, mean = _design(np.random.default_rng(1))
+    fit = _fit(test_index, jac, mean, 1.0, rng)
+    d = fit.data
+    y = np.concatenate([d.drum_temp_C, d.torque_Nm])
+    theta = np.linalg.lstsq(jac, y, rcond=None)[0]
+    rows = np.concatenate([test_index, test_index])
+    for k in range(d.n_tests):
+        g, loo, step = linear_step(fit, [k])
+        keep = np.array([i != 3 + k for i in range(jac.shape[1])])       # the held test's offset: not informed
+        refit = np.linalg.lstsq(jac[~g][:, keep], y[~g], rcond=None)[0]
+        np.testing.assert_allclose(theta[keep] + step[keep], refit, rtol=1e-7, atol=1e-7)
+        own = jac[g][:, ~keep] @ (theta[~keep] + step[~keep])
+        np.testing.assert_allclose(loo, jac[g][:, keep] @ refit - y[g] + own, rtol=1e-7, atol=1e-7)
+        assert np.array_equal(g, rows == k)
 
 
 def test_a_right_model_has_no_model_error_on_average():
