@@ -68,3 +68,21 @@ def test_an_elementwise_effect_gives_each_copy_its_own_numbers(name):
     for channel in ("drum_temp_C", "lining_temp_C", "torque_Nm"):
         alone = np.concatenate([getattr(model.predict(data, s), channel) for s in sets])
         assert np.array_equal(getattr(both, channel), alone), channel
+
+
+BRAKE = ("mu_drum", "u6_slope_m_per_N", "u6_offset_m", "shoe_arm_ratio", "heat_transfer_W_m2K")
+
+
+@pytest.mark.parametrize("seed", [2, 3])
+def test_a_misfit_fit_along_the_torque_scale_valley_settles_within_its_budget(seed):
+    """A two-effect model in the wrong form (a lag and a linear modulus change for a quadratic friction and a
+    sigmoid modulus drop) with the brake parameters free: μ_d, the arm ratio and the eq. (24) slope trade along a
+    curved valley.  The fit stops in a few hundred residual calls where a fit with ten times the budget ends too
+    (with MINPACK's growing column-norm scaling it crawled through 6 000–12 000 calls to the same BIC)."""
+    from rollaway.identify.model import DrumPlan
+    data = generate(["friction_quadratic", "modulus_sigmoid"], sampling="1min", seed=seed, n_forces=3)
+    effects, plan = ["shoe_thermal_lag", "modulus_temperature"], DrumPlan(None, BRAKE)
+    fit = calibrate(data, effects, plan)
+    long = calibrate(data, effects, plan, max_iterations=10 * fitting.MAX_ITERATIONS)
+    assert fit.fit_info["stages"][0]["nfev"] < 2000
+    assert abs(fit.bic - long.bic) < 0.5

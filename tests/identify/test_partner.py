@@ -170,7 +170,8 @@ def test_a_spline_re_form_on_few_tests_is_judged_by_refitting_the_folds(source, 
     """A sigmoid modulus drop on three or four tests (held-out campaign 309; two-effect campaign 62, a sigmoid and a
     linear modulus change): friction_temperature beside modulus_temperature beat the modulus spline on held-out tests
     only through the linearised leave-one-test-out, whose step along the spline's directions that one test alone
-    informs is huge (a held-out χ² of 56 500 against 855 refitted).  Refitted folds: no partner."""
+    informs is huge (a held-out χ² of 56 500 against 855 refitted).  Refitted folds: no partner.  (The modulus
+    spline of campaign 309 now settles where the linearised comparison already fails: the same verdict.)"""
     if source == "names":
         from tests.identify.heldout_names import campaign
         hidden, data = campaign(index)
@@ -184,6 +185,9 @@ def test_a_spline_re_form_on_few_tests_is_judged_by_refitting_the_folds(source, 
     step = next(s for s in d.steps if s.get("step") == "own evidence")
     assert step["effect"] == "friction_temperature" and not step["kept"]
     judged = step["beyond_reform"]
+    if judged["heldout"] == "linearised":     # the spline settled where its linear steps hold: no refit needed
+        assert source == "names" and not judged["passes"]
+        return
     assert judged["heldout"] == "refitted" and judged["refitted_folds"][0] >= 1      # the spline's folds
     assert judged["linearised"]["heldout_elpd"] > judged["heldout_elpd"]
     assert any("refitted where a linear step failed its check" in w for w in d.evidence)

@@ -16,6 +16,9 @@ def lagged_temperature_C(time_s, initial_temp_C, ambient_C, drum_time_constant_s
     tau = np.asarray(drum_time_constant_s, float)
     tau_l = np.asarray(lag_time_constant_s, float)
     amp = np.asarray(initial_temp_C, float) - ambient_C
+    if tau.ndim == 0 and tau_l.ndim == 0 and tau_l > 0.0 and not abs(tau - tau_l) < 1e-6 * tau:
+        with np.errstate(over="ignore"):    # one lag for every sample (a fit): only its branch below
+            return ambient_C + amp * (tau * np.exp(-t / tau) - tau_l * np.exp(-t / tau_l)) / (tau - tau_l)
     plain = ambient_C + amp * np.exp(-t / tau)
     equal = ambient_C + amp * (1.0 + t / tau) * np.exp(-t / tau)
     with np.errstate(divide="ignore", invalid="ignore", over="ignore"):

@@ -6,7 +6,7 @@ temperature reading included: it measures T_0 like any other reading).  Paramete
 two kinds:
 
 * global ones (μ_d, h, effect parameters) — fitted by :func:`scipy.optimize.least_squares`
-  (trust-region reflective, bounds, variables scaled to order one);
+  (MINPACK's Levenberg–Marquardt in bounded coordinates: :meth:`Problem.solve`);
 * per-test ones (each test's T_0, per-test effect parameters) — they touch only their own
   test's rows, so their Jacobian is block diagonal and one model evaluation per family gives
   all of it (every test perturbed at once).  For given globals they are eliminated by one
@@ -146,7 +146,11 @@ class Problem:
         The globals are fitted by MINPACK's Levenberg–Marquardt (:func:`scipy.optimize.least_squares`,
         ``method="lm"``) in bounded-to-unbounded coordinates x = lo + (hi − lo)·(sin z + 1)/2 (the
         MINUIT transformation, as lmfit uses): the residual has 2·N rows and only a few columns, where
-        MINPACK's QR is much cheaper per iteration than the trust-region-reflective solver.
+        MINPACK's QR is much cheaper per iteration than the trust-region-reflective solver.  The trust
+        region is measured in z itself (``x_scale=1``: a step is a share of each parameter's range)
+        rather than by MINPACK's running column norms (``x_scale="jac"``, which only grow: a parameter
+        the residual was steep in far from the optimum keeps a tiny trust radius, and a fit along a
+        curved valley, μ_d against the arm ratio and the eq. (24) slope, crawls to its budget).
         """
         model, names = self.model, self.names
         vals = {**self.values, **{n: start[n] for n in names if n in start}}
@@ -171,7 +175,7 @@ class Problem:
 
             if names:
                 res = optimize.least_squares(fun, z, method="lm", xtol=tol, ftol=tol, gtol=tol,
-                                             max_nfev=max_iterations * (len(names) + 1))
+                                             x_scale=1.0, max_nfev=max_iterations * (len(names) + 1))
                 z = res.x
                 vals.update(zip(names, to_x(z)))
             r_lin, step, _, _ = self.profile(vals)
