@@ -191,3 +191,30 @@ def test_a_spline_re_form_on_few_tests_is_judged_by_refitting_the_folds(source, 
     assert judged["heldout"] == "refitted" and judged["refitted_folds"][0] >= 1      # the spline's folds
     assert judged["linearised"]["heldout_elpd"] > judged["heldout_elpd"]
     assert any("refitted where a linear step failed its check" in w for w in d.evidence)
+
+
+def test_the_screens_beside_a_re_formed_first_hold_its_spline():
+    """The screen fits the candidate's and the brake parameters only; the spline stays where the re-formed first put
+    it (its BIC ranks the candidates against the same spline; the best is refitted with everything free)."""
+    from rollaway.effects import get_effect
+    from rollaway.identify.model import DrumPlan
+    from rollaway.identify.partner import _all_but
+    from rollaway.identify.shape import flexible_effect
+    flex = flexible_effect(get_effect("lining_creep"), np.linspace(0.0, 3600.0, 61))
+    plan = DrumPlan(None, ("mu_drum", "u6_slope_m_per_N", "heat_transfer_W_m2K"))
+    free = _all_but(plan, flex, "friction_temperature")
+    assert not any(n.startswith(flex.name + ".") for n in free)
+    assert {"mu_drum", "u6_slope_m_per_N", "heat_transfer_W_m2K", "friction_temperature.mu_slope_per_K"} <= set(free)
+
+
+def test_a_partner_found_only_beside_a_freely_refitted_spline_is_not_named():
+    """Two-effect campaign 23 (a power-law creep and a friction fade above 110 °C, one direction, 4 tests, another
+    drum radius): a modulus change beside the re-formed creep won the screens when each screen refitted the spline
+    too, and was named beside the creep.  With the spline held in the screens no second effect earns its place: the
+    answer is "none, structure remains" with both true effects as the closest."""
+    from tests.uncertainty.band_questions import two_effect_data
+    hidden, *_, data, _ = two_effect_data(23)
+    assert set(hidden) == {"creep_power_law", "friction_fade_above"}
+    d = diagnose(data)
+    assert d.verdict == "none" and d.remaining_structure, d.summary()
+    assert {e for a in d.alternatives for e in a["effects"]} == {"lining_creep", "friction_temperature"}

@@ -231,8 +231,9 @@ def beside_reformed(data, params, first: str, first_fit: FitResult, names, nq: N
     spline, :func:`rollaway.identify.shape.flexible_effect`), for when the first's catalogue form is wrong: then
     the pair keeps the first's misfit and the first re-formed absorbs part of the second, and a forward step on
     the catalogue form can pick the wrong second effect.  Only when the first re-formed still leaves structure.
-    Each effect of *names* is screened beside the re-formed first (:data:`SCREEN_ITERATIONS`); the best by BIC
-    is refitted and must lower BIC below :data:`BIC_THRESHOLD` and predict held-out tests better by
+    Each effect of *names* is screened beside the re-formed first (:data:`SCREEN_ITERATIONS`, the spline held where
+    the re-formed first put it: its effect parameters and the brake parameters fitted); the best by BIC
+    is refitted with everything free and must lower BIC below :data:`BIC_THRESHOLD` and predict held-out tests better by
     :func:`beyond_reform`'s rule.  *reform*: that re-formed first, when already fitted (:func:`_reform_job`).
     Returns (name, the catalogue pair's fit, ΔBIC, held-out comparison) or None."""
     from rollaway.effects import get_effect
@@ -245,9 +246,9 @@ def beside_reformed(data, params, first: str, first_fit: FitResult, names, nq: N
     if reform.jacobian is None or not structure(reform, nq, nt)["structured"]:
         return None
     others = [c for c in names if c != first and not get_effect(c).per_test_parameters()]
-    screened = list(zip(fit_all(data, [([flex, c], params, dict(start=reform.values, statistics=False,
-                                                                max_iterations=SCREEN_ITERATIONS)) for c in others]),
-                        others))
+    jobs = [([flex, c], params, dict(start=reform.values, free=_all_but(params, flex, c), statistics=False,
+                                     max_iterations=SCREEN_ITERATIONS)) for c in others]
+    screened = list(zip(fit_all(data, jobs), others))
     if not screened:
         return None
     screen, name = min(screened, key=lambda t: t[0].bic)
@@ -260,6 +261,13 @@ def beside_reformed(data, params, first: str, first_fit: FitResult, names, nq: N
         return None
     pair = calibrate(data, [first, name], params, start=both.values)
     return name, pair, float(both.bic - reform.bic), pref
+
+
+def _all_but(params, flex, name: str) -> list[str]:
+    """The parameters of the effects *flex* and *name* on the drum of *params* that a screen fits: all but *flex*'s
+    own (its spline ordinates stay where the re-formed first put them)."""
+    from rollaway.identify.model import BenchModel
+    return [n for n in BenchModel(params, [flex, name]).parameter_names() if not n.startswith(flex.name + ".")]
 
 
 def _beyond_own_reform(data, params, name: str, both: FitResult) -> bool:
