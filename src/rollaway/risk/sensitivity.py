@@ -92,7 +92,10 @@ def sobol_indices(population, base_samples: int = BASE_SAMPLES, seed: int | None
     if np.var(y) <= 0:
         zero = np.zeros(d)
         return Sensitivity(population.names, zero, zero, zero, zero, len(y))
-    res = sobol_analyze.analyze(problem, y, calc_second_order=False, conf_level=0.95, seed=seed)
+    # SALib draws its bootstrap from the global, unseeded generator for a false seed (0 included): seed + 1 keeps
+    # every seed's intervals reproducible
+    res = sobol_analyze.analyze(problem, y, calc_second_order=False, conf_level=0.95,
+                                seed=None if seed is None else int(seed) + 1)
     return Sensitivity(population.names, np.asarray(res["S1"]), np.asarray(res["S1_conf"]),
                        np.asarray(res["ST"]), np.asarray(res["ST_conf"]), len(y))
 
