@@ -91,3 +91,5 @@ case("segfault.py", "import os, signal\nos.kill(os.getpid(), signal.SIGSEGV)\n",
      effect="humidity")
 case("amplitude-unknown.py", plug(**{'    def friction': '    amplitude = "b"\n\n    def friction'}), "error",
      ["amplitude-unknown.py", "amplitude"], effect="humidity")
+case("shape-scale-negative.py", plug(**{'    def friction': '    shape_scale = -1.0\n\n    def friction'}), "error",
+     ["shape-scale-negative.py", "shape_scale"], effect="humidity")

@@ -33,6 +33,23 @@ def test_a_shape_free_creep_with_the_catalogue_law_at_its_knots_matches_it_there
     assert np.all(a > b)
 
 
+def test_a_shape_free_cable_relaxation_loses_the_same_displacement_at_every_hand_force():
+    """The cable's physics is a displacement lost (eq. 24's u_6 − δ(t)): its flexible form adds s·g(t) to u_6, so
+    with the catalogue law at its knots it matches that law at every hand force — a factor on u_6 would lose
+    a share of u_6, more at heavy forces (the lining creep's physics, not the cable's)."""
+    cable = get_effect("cable_relaxation")
+    cls = spline_effect(cable, KNOTS)
+    assert cls.scale == cable.shape_scale > 0 and "+" in cls.physics
+    loss = lambda t: 8e-6 * (1 - np.exp(-np.asarray(t) / 600.0))                      # noqa: E731
+    coef = -np.diff(loss(KNOTS)) / cable.shape_scale
+    spline = DrumModel("paper", [cls], {f"cable_relaxation_shape.c{j}": c for j, c in enumerate(coef)})
+    law = DrumModel("paper", ["cable_relaxation"], {"cable_relaxation.displacement_loss_m": 8e-6,
+                                                    "cable_relaxation.relaxation_time_s": 600.0})
+    for force in (150.0, 250.0, 400.0):
+        a, b = (m.evaluate(np.array(KNOTS), force, initial_temp_C=200.0).torque_Nm for m in (spline, law))
+        np.testing.assert_allclose(a, b, rtol=1e-9)
+
+
 def test_a_model_file_keeps_a_shape_free_form_and_its_torque(tmp_path):
     cls = spline_effect(get_effect("friction_temperature"), [30.0, 100.0, 200.0, 300.0])
     m = DrumModel("paper", [cls], {"friction_temperature_shape.c0": 0.02, "friction_temperature_shape.c1": -0.05,

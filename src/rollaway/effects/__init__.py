@@ -67,6 +67,10 @@ def _validate_class(cls, where: str) -> type[Effect]:
         raise UserError(f"{where}: effect '{name}': amplitude = {amplitude!r} is not one of its parameters "
                         f"({', '.join(sorted(seen))}); name the parameter whose neutral value switches it off, or "
                         f"leave it out"[:300])
+    scale = getattr(cls, "shape_scale", 0.0)
+    if not (isinstance(scale, (int, float)) and not isinstance(scale, bool) and math.isfinite(scale) and scale >= 0):
+        raise UserError(f"{where}: effect '{name}': shape_scale = {scale!r} must be a number ≥ 0 (the unit of an "
+                        f"absolute change of its hook's quantity), or left out"[:300])
     for hook in HOOKS:
         if not callable(getattr(cls, hook, None)):
             raise UserError(f"{where}: effect '{name}': '{hook}' must be a method (a hook), got "

@@ -121,6 +121,10 @@ class Effect:
     # covariate of the effect's flexible (shape-free) form drawn by diagnose when the form mismatches:
     # "time_s", "lining_temp_C", "drum_temp_C" or "hand_force_N"; "" = chosen from the hook
     shape_covariate: ClassVar[str] = ""
+    # where the effect's physics is an absolute change of its hook's quantity (a displacement lost, the same at
+    # every hand force), the unit s of that change [the quantity's unit]: the flexible form is q + s·g(x) instead
+    # of q·(1 + g(x)), which would make the change proportional to q; 0 = proportional (the default)
+    shape_scale: ClassVar[float] = 0.0
     # the parameter whose neutral value switches the effect off whatever the others are (e.g. a lost
     # fraction, not its time constant); "" = the effect is neutral only when every parameter is
     amplitude: ClassVar[str] = ""

@@ -24,6 +24,7 @@ class CableRelaxation(Effect):
                         typical=600.0, description="time constant of the loss"),
     )
     amplitude = "displacement_loss_m"          # no loss, no effect, whatever the time constant
+    shape_scale = 1e-5                         # its flexible form loses displacement, 10 µm a unit [assumed]
 
     def displacement(self, state, u6_m, v):
         return u6_m - v["displacement_loss_m"] * (1.0 - np.exp(-state.time_s / v["relaxation_time_s"]))

@@ -2,7 +2,9 @@
 
 A catalogue effect is a physics (which quantity of the chain it changes) and a functional form (how).  Its
 shape-free version keeps the physics and drops the form: the hook's quantity q becomes q·(1 + g(x)), g a linear
-spline in the effect's covariate x (time, lining temperature, …) with fixed knots and g = 0 at the first knot.
+spline in the effect's covariate x (time, lining temperature, …) with fixed knots and g = 0 at the first knot —
+or q + s·g(x) where the physics is an absolute change (``Effect.shape_scale`` = s: a cable relaxation loses the
+same displacement at every hand force, which a factor on u_6 would turn into a loss proportional to the force).
 :mod:`rollaway.identify.shape` fits one to see the shape the data want; a saved model may carry one as a competing
 form (``[effects.NAME_shape]`` with ``knots`` and ``c0`` … in a model file, :mod:`rollaway.model.model_file`).
 Beyond the knots the spline is flat (the last segment's end value holds).
@@ -60,11 +62,14 @@ def spline_effect(effect, knots) -> type[Effect]:
     hook, cov = found
     knots = np.asarray(knots, float)
     names = [f"c{j}" for j in range(len(knots) - 1)]
+    scale = float(getattr(effect, "shape_scale", 0.0) or 0.0)
 
     def apply(self, state, q, v):
         f = spline_factor(_covariate(state, cov), knots, [v[k] for k in names])
         if hook in TEMPERATURE_HOOKS:
             return state.ambient_C + (q - state.ambient_C) * f
+        if scale:
+            return q + scale * (f - 1.0)       # an absolute change: s·g(x)
         return q * f
 
     params = tuple(EffectParameter(k, "–", neutral=0.0, lower=-COEFFICIENT_BOUND, upper=COEFFICIENT_BOUND,
@@ -74,10 +79,11 @@ def spline_effect(effect, knots) -> type[Effect]:
     return type(f"ShapeFree_{effect.name}", (Effect,), {
         "__reduce__": lambda self: (_instance, (base, knot_list)),     # pickled as its base and knots
         "name": f"{effect.name}{SUFFIX}", "summary": f"shape-free version of {effect.name}",
-        "physics": f"{hook} × (1 + linear spline in {cov}, {len(names)} segments)", "signature": "",
+        "physics": (f"{hook} + {scale:g} × linear spline in {cov}, {len(names)} segments" if scale else
+                    f"{hook} × (1 + linear spline in {cov}, {len(names)} segments)"), "signature": "",
         "reference": "linear spline (no functional form assumed)", "parameters": params, hook: apply,
         "elementwise": True,                  # fixed knots, each sample's own covariate
-        "knots": knots, "hook": hook, "covariate": cov, "base": effect.name,
+        "knots": knots, "hook": hook, "covariate": cov, "base": effect.name, "scale": scale,
         **({"__rollaway_source__": src} if (src := getattr(effect, "__rollaway_source__", None)) else {})})
 
 

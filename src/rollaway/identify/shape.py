@@ -242,6 +242,8 @@ def shape_curves(effect: Effect, catalogue_fit, flex_fit, flex_cls, points: int 
     grid = np.linspace(float(x.min()), float(x.max()), points)
     coef = [flex_fit.values[f"{flex_cls.name}.c{j}"] for j in range(len(flex_cls.knots) - 1)]
     flex = spline_factor(grid, flex_cls.knots, coef)
+    if getattr(flex_cls, "scale", 0.0) and hook not in TEMPERATURE_HOOKS:   # an absolute change, as a factor on
+        flex = 1.0 + flex_cls.scale * (flex - 1.0) / probe[hook][0]         # the probe the catalogue form is drawn at
     # put both on the same footing: factor 1 at the spline's reference (lowest covariate)
     cat_ref = float(np.interp(grid[0], x[order], np.broadcast_to(cat, x.shape)[order]))
     return {"hook": hook, "covariate": cov, "unit": COVARIATE_UNITS.get(cov, ""),
