@@ -50,6 +50,23 @@ def test_a_shape_free_cable_relaxation_loses_the_same_displacement_at_every_hand
         np.testing.assert_allclose(a, b, rtol=1e-9)
 
 
+def test_a_shape_free_radial_contraction_adds_the_same_clamp_force_at_every_hand_force():
+    """Its physics is a clamp force that grows as the drum cools, the same at every hand force: the flexible form
+    adds s·g(T_d) to the clamp force (a factor would scale it with the hand force)."""
+    radial = get_effect("drum_radial_contraction")
+    cls = spline_effect(radial, [40.0, 120.0, 250.0])
+    assert cls.scale == radial.shape_scale > 0
+    spline = DrumModel("paper", [cls], {"drum_radial_contraction_shape.c0": -0.5,
+                                        "drum_radial_contraction_shape.c1": -0.8})
+    plain = DrumModel("paper")
+    t = np.array([0.0, 900.0, 3600.0])
+    added = [spline.evaluate(t, f, initial_temp_C=250.0).normal_force_N - plain.evaluate(
+        t, f, initial_temp_C=250.0).normal_force_N for f in (200.0, 400.0)]
+    np.testing.assert_allclose(added[0], added[1], rtol=1e-9)
+    a = added[0]                          # 1.3 units of 2 kN less at 250 °C (energised), none once cooled to 40 °C
+    assert a[0] < -2600.0 and a[0] < a[1] < a[2] and abs(a[2]) < 1.0
+
+
 def test_a_model_file_keeps_a_shape_free_form_and_its_torque(tmp_path):
     cls = spline_effect(get_effect("friction_temperature"), [30.0, 100.0, 200.0, 300.0])
     m = DrumModel("paper", [cls], {"friction_temperature_shape.c0": 0.02, "friction_temperature_shape.c1": -0.05,

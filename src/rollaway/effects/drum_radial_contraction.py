@@ -18,6 +18,7 @@ class DrumRadialContraction(Effect):
                  "hand force (scaled only by the direction's self-energising factor); the torque falls "
                  "less over the hour than the baseline predicts")
     shape_covariate = "drum_temp_C"
+    shape_scale = 2000.0                       # its flexible form adds clamp force, 2 kN a unit [assumed]
     reference = ("Timoshenko & Goodier, Theory of Elasticity, 1951, §§ thin rings (thermal ring contraction); "
                  "Day, Braking of Road Vehicles, 2014, ch. 5 (drum distortion)")
     parameters = (EffectParameter("radial_fraction", "–", neutral=0.0, lower=0.0, upper=1.0, initial=0.02,
