@@ -103,3 +103,28 @@ def test_hooks_see_the_test_and_per_test_parameters_take_one_value_per_test():
     assert m.state(d).test_ids == ["a", "b"]
     warm = m.predict(d, {"initial_temp_C": np.array([210.0, 190.0])})
     assert warm.drum_temp_C[0] == 210.0 and warm.drum_temp_C[3] == 190.0
+
+
+def test_logged_ambient_cooling_in_closed_form_is_the_stepwise_recursion_for_interleaved_tests_and_fast_cooling():
+    """The cumulative-sum form against the exact one-step recursion it replaces, for tests whose rows interleave, a
+    fast time constant (beyond e^600 it steps sample by sample) and a dense log."""
+    from rollaway.physics.cooling import _one_test, drum_temperature_logged_ambient_C
+    rng = np.random.default_rng(3)
+    for n, tau in ((61, 1200.0), (3601, 300.0), (400, 5.0)):
+        t = np.linspace(0.0, 3600.0, n)
+        amb = 25.0 + np.cumsum(rng.normal(0.0, 0.05, n))
+        step = [180.0]
+        for j in range(n - 1):
+            dt = t[j + 1] - t[j]
+            m = (amb[j + 1] - amb[j]) / dt * tau
+            step.append(amb[j + 1] - m + (step[-1] - amb[j] + m) * np.exp(-dt / tau))
+        np.testing.assert_allclose(_one_test(t, 180.0, amb, np.full(n, tau)), step, rtol=1e-12, atol=1e-9)
+    t = np.r_[np.linspace(0, 3600, 13), np.linspace(0, 3600, 13)]
+    idx = np.r_[np.zeros(13, int), np.ones(13, int)]
+    amb = 20.0 + t / 900.0
+    t0 = np.where(idx == 0, 250.0, 120.0)
+    whole = drum_temperature_logged_ambient_C(t, t0, amb, 800.0, idx)
+    inter = np.empty(26, int)                                  # the two tests' rows interleaved, time order kept
+    inter[0::2], inter[1::2] = np.arange(13), np.arange(13, 26)
+    mixed = drum_temperature_logged_ambient_C(t[inter], t0[inter], amb[inter], 800.0, idx[inter])
+    np.testing.assert_array_equal(mixed, whole[inter])

@@ -51,15 +51,28 @@ def drum_temperature_logged_ambient_C(time_s: ArrayLike, initial_temp_C: ArrayLi
     idx = np.asarray(test_index)
     out = np.empty_like(t)
     order = np.argsort(idx, kind="stable")          # rows grouped by test, time order kept
-    start = np.r_[True, idx[order][1:] != idx[order][:-1]] if len(order) else np.zeros(0, bool)
-    first = np.maximum.accumulate(np.where(start, np.arange(len(order)), 0))
-    pos = np.arange(len(order)) - first             # sample number within the test
-    out[order[start]] = t0[order[start]]
-    for k in range(1, int(pos.max()) + 1 if len(pos) else 0):
-        at = np.flatnonzero(pos == k)
-        rows, prev = order[at], order[at - 1]
-        dt = t[rows] - t[prev]
-        slope = (amb[rows] - amb[prev]) / np.where(dt > 0, dt, 1.0)
-        m_tau = slope * tau[rows]
-        out[rows] = amb[rows] - m_tau + (out[prev] - amb[prev] + m_tau) * np.exp(-dt / tau[rows])
+    starts = np.flatnonzero(np.r_[True, idx[order][1:] != idx[order][:-1]]) if len(order) else np.zeros(0, int)
+    for lo, hi in zip(starts, np.r_[starts[1:], len(order)]):
+        rows = order[lo:hi]
+        out[rows] = _one_test(t[rows], t0[rows[0]], amb[rows], tau[rows])
     return out
+
+
+def _one_test(t: np.ndarray, t0: float, amb: np.ndarray, tau: np.ndarray) -> np.ndarray:
+    """The recursion of :func:`drum_temperature_logged_ambient_C` over one test's samples, T_{j+1} = E_j·T_j + c_j
+    with E_j = e^{−Δ_j/τ}: in closed form T_k = e^{−S_k}·(T_0 + Σ_{j<k} c_j·e^{S_{j+1}}), S the running sum of Δ/τ
+    (cumulative sums, no loop over samples); stepped one sample at a time where e^{S} would overflow."""
+    dt = np.diff(t)
+    step = dt / tau[1:]
+    slope = np.diff(amb) / np.where(dt > 0, dt, 1.0)
+    m_tau = slope * tau[1:]
+    decay = np.exp(-step)
+    c = amb[1:] - m_tau - (amb[:-1] - m_tau) * decay
+    s = np.cumsum(step)
+    if s.size and s[-1] > 600.0:                    # e^{S} beyond ~1e260: one sample after another
+        out = np.empty_like(t)
+        out[0] = t0
+        for j in range(len(dt)):
+            out[j + 1] = decay[j] * out[j] + c[j]
+        return out
+    return np.r_[t0, np.exp(-s) * (t0 + np.cumsum(c * np.exp(s)))]
