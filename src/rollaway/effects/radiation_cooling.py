@@ -45,7 +45,9 @@ def _cooling_C(time_s, initial_temp_C, ambient_C, heat_transfer_W_m2K, emissivit
     10 s log, 8× faster)."""
     t, t0, amb, h, eps = np.broadcast_arrays(*(np.asarray(x, float) for x in (
         time_s, initial_temp_C, ambient_C, heat_transfer_W_m2K, emissivity)))
-    if amb.size <= AMBIENT_TABLES or np.unique(amb).size <= AMBIENT_TABLES:
+    distinct = np.unique(amb).size if amb.size > AMBIENT_TABLES else amb.size
+    grid = (float(amb.max()) - float(amb.min())) / AMBIENT_STEP_K + 2.0 if amb.size else 0.0
+    if distinct <= AMBIENT_TABLES or distinct <= 2.0 * grid:     # the grid would build more tables (wide draws)
         return _tabled_C(t, t0, amb, h, eps, cooled_area_m2, heat_capacity_J_K, n_grid)
     lo = np.floor(amb / AMBIENT_STEP_K) * AMBIENT_STEP_K
     w = (amb - lo) / AMBIENT_STEP_K
