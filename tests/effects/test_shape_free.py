@@ -67,6 +67,26 @@ def test_a_shape_free_radial_contraction_adds_the_same_clamp_force_at_every_hand
     assert a[0] < -2600.0 and a[0] < a[1] < a[2] and abs(a[2]) < 1.0
 
 
+def test_a_model_file_keeps_an_absolute_shape_and_reads_one_without_scale_as_a_factor(tmp_path):
+    """A cable's spline is saved with its unit (``scale``) and comes back the same; a table without ``scale`` (files
+    written before absolute forms existed) is the factor it meant then."""
+    cls = spline_effect(get_effect("cable_relaxation"), KNOTS)
+    m = DrumModel("paper", [cls], {"cable_relaxation_shape.c0": -0.2, "cable_relaxation_shape.c1": -0.1,
+                                   "cable_relaxation_shape.c2": -0.05})
+    path = save_model(m, tmp_path / "m.toml")
+    assert "scale = 1e-05" in open(path).read()
+    back = load_model(path)
+    np.testing.assert_allclose(back.evaluate(T, 250.0).torque_Nm, m.evaluate(T, 250.0).torque_Nm, rtol=1e-12)
+    old = tmp_path / "old.toml"
+    old.write_text("\n".join(line for line in open(path).read().splitlines() if not line.startswith("scale =")))
+    factor = load_model(old)
+    assert factor.effects[0].scale == 0.0
+    u6_factor = DrumModel("paper", [spline_effect(get_effect("cable_relaxation"), KNOTS, 0.0)], dict(m.values))
+    np.testing.assert_allclose(factor.evaluate(T, 250.0).torque_Nm, u6_factor.evaluate(T, 250.0).torque_Nm,
+                               rtol=1e-12)
+    assert not np.allclose(factor.evaluate(T, 250.0).torque_Nm, m.evaluate(T, 250.0).torque_Nm)
+
+
 def test_a_model_file_keeps_a_shape_free_form_and_its_torque(tmp_path):
     cls = spline_effect(get_effect("friction_temperature"), [30.0, 100.0, 200.0, 300.0])
     m = DrumModel("paper", [cls], {"friction_temperature_shape.c0": 0.02, "friction_temperature_shape.c1": -0.05,
@@ -87,6 +107,7 @@ def test_a_model_file_keeps_a_shape_free_form_and_its_torque(tmp_path):
     ("[effects.lining_creep_shape]\nknots = [0, 1, 2]\nc5 = 0.1\n", "unknown key 'effects.lining_creep_shape.c5'"),
     ("[effects.lining_creep_shape]\nknots = [0, 1, 2]\nc0 = 2.0\n", "outside [-0.9, 0.9]"),
     ("[effects.torque_zero_offset_shape]\nknots = [0, 1, 2]\n", "no shape-free version"),
+    ("[effects.cable_relaxation_shape]\nknots = [0, 1, 2]\nscale = -1e-05\n", "key 'effects.cable_relaxation_shape.scale'"),
 ])
 def test_bad_shape_free_tables_are_one_line_errors_naming_the_key(tmp_path, run_cli, table, needle):
     path = tmp_path / "bad.toml"

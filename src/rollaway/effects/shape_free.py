@@ -53,16 +53,17 @@ def _covariate(state, name: str) -> np.ndarray:
     return np.broadcast_to(np.asarray(getattr(state, name), float), state.time_s.shape)
 
 
-def spline_effect(effect, knots) -> type[Effect]:
+def spline_effect(effect, knots, scale: float | None = None) -> type[Effect]:
     """An Effect class changing *effect*'s quantity (its first hook) by a spline factor of its covariate with
-    *knots* (strictly increasing, at least three); parameters ``c0`` … one per knot segment."""
+    *knots* (strictly increasing, at least three); parameters ``c0`` … one per knot segment.  *scale*: the unit of
+    an absolute change (q + scale·g); default the effect's ``shape_scale``, 0 a factor (q·(1 + g))."""
     found = shape_hook(effect)
     if found is None:
         raise ValueError(f"effect '{effect.name}' has no shape-free version (no hook, or per-test parameters)")
     hook, cov = found
     knots = np.asarray(knots, float)
     names = [f"c{j}" for j in range(len(knots) - 1)]
-    scale = float(getattr(effect, "shape_scale", 0.0) or 0.0)
+    scale = float((getattr(effect, "shape_scale", 0.0) if scale is None else scale) or 0.0)
 
     def apply(self, state, q, v):
         f = spline_factor(_covariate(state, cov), knots, [v[k] for k in names])
@@ -77,7 +78,7 @@ def spline_effect(effect, knots) -> type[Effect]:
                    for j, k in enumerate(names))
     base, knot_list = effect.name, tuple(float(k) for k in knots)
     return type(f"ShapeFree_{effect.name}", (Effect,), {
-        "__reduce__": lambda self: (_instance, (base, knot_list)),     # pickled as its base and knots
+        "__reduce__": lambda self: (_instance, (base, knot_list, scale)),    # pickled as its base, knots, scale
         "name": f"{effect.name}{SUFFIX}", "summary": f"shape-free version of {effect.name}",
         "physics": (f"{hook} + {scale:g} × linear spline in {cov}, {len(names)} segments" if scale else
                     f"{hook} × (1 + linear spline in {cov}, {len(names)} segments)"), "signature": "",
@@ -87,10 +88,10 @@ def spline_effect(effect, knots) -> type[Effect]:
         **({"__rollaway_source__": src} if (src := getattr(effect, "__rollaway_source__", None)) else {})})
 
 
-def _instance(base: str, knots) -> Effect:
+def _instance(base: str, knots, scale: float | None = None) -> Effect:
     """An instance of *base*'s shape-free form with *knots* (how one is unpickled: its class is built at run time)."""
     from rollaway.effects import get_effect
-    return spline_effect(get_effect(base), knots)()
+    return spline_effect(get_effect(base), knots, scale)()
 
 
 def is_shape_free(effect) -> bool:
@@ -98,9 +99,10 @@ def is_shape_free(effect) -> bool:
     return getattr(effect, "knots", None) is not None and getattr(effect, "base", None) is not None
 
 
-def from_model_file(name: str, knots, where: str) -> type[Effect]:
+def from_model_file(name: str, knots, where: str, scale=0.0) -> type[Effect]:
     """The shape-free effect ``[effects.NAME]`` of a model file (*name* = a catalogue effect + ``_shape``, *knots*
-    its ``knots`` list); a one-line error naming *where* and the key otherwise."""
+    its ``knots`` list, *scale* its ``scale``: the unit of an absolute change, absent (0) for a factor — files
+    written before absolute forms existed hold factors); a one-line error naming *where* and the key otherwise."""
     from rollaway.effects import available_effects
     from rollaway.errors import suggest
     base = name[:-len(SUFFIX)]
@@ -120,7 +122,10 @@ def from_model_file(name: str, knots, where: str) -> type[Effect]:
     if not ok or np.any(np.diff(np.asarray(knots, float)) <= 0):
         raise UserError(f"{where}: key '{key}' must be a list of at least three increasing numbers, got {knots!r}"
                         [:300])
-    return spline_effect(known[base], knots)
+    if not (isinstance(scale, (int, float)) and not isinstance(scale, bool) and np.isfinite(scale) and scale >= 0):
+        raise UserError(f"{where}: key 'effects.{name}.scale' must be a number ≥ 0 (the unit of an absolute change "
+                        f"of the spline; leave it out for a factor), got {scale!r}"[:300])
+    return spline_effect(known[base], knots, float(scale))
 
 
 __all__ = ["COEFFICIENT_BOUND", "HOOK_COVARIATE", "SUFFIX", "from_model_file", "is_shape_free", "shape_hook",

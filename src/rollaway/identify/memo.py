@@ -49,7 +49,7 @@ def _effect_key(e, keep: list):
     if isinstance(e, str):
         return ("name", e)
     if is_shape_free(e):
-        return ("shape-free", e.base, tuple(float(k) for k in e.knots), e.hook, e.covariate)
+        return ("shape-free", e.base, tuple(float(k) for k in e.knots), e.hook, e.covariate, float(e.scale))
     cls = e if isinstance(e, type) else type(e)
     if available_effects().get(getattr(cls, "name", None)) is not cls:
         keep.append(e)

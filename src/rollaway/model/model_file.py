@@ -15,6 +15,8 @@ A model file is a parameter file (``extends`` + values that differ, see
     knots = [0.0, 300.0, 3600.0]      # its spline's knots in the effect's covariate, then one value
     c0 = -0.05                        # per knot segment
     c1 = -0.04
+    # scale = 1e-05                   # an absolute change's unit (cable_relaxation_shape: u_6 + scale·g);
+                                      # absent: a factor, q·(1 + g)
 
     [covariance]                      # of the fitted parameters (names + matrix, SI units)
     names = ["mu_drum", "lining_creep.relaxed_fraction", ...]
@@ -143,7 +145,7 @@ def _effects(table, where: str, base_dir: Path | None):
             files[name] = plugin
         known = available_effects()
         if name not in known and name.endswith(SHAPE_SUFFIX):     # a shape-free form: its knots give the class
-            known = {name: from_model_file(name, entries.pop("knots", None), where)}
+            known = {name: from_model_file(name, entries.pop("knots", None), where, entries.pop("scale", 0.0))}
         if name not in known:
             raise UserError(f"{where}: unknown effect [effects.{name}]{suggest(name, known)}; run 'rollaway diagnose "
                             f"--list-effects' for the catalogue, or add plugin = \"file.py\" to the table")
@@ -308,6 +310,8 @@ def model_to_toml(model, comment: str = "", base_dir: Path | None = None) -> str
             lines.append(f"plugin = {_value(plugin)}")
         if getattr(e, "knots", None) is not None:          # a shape-free form (rollaway.effects.shape_free)
             lines.append(f"knots = {_value([float(k) for k in e.knots])}  # [{e.covariate}]")
+            if e.scale:                                     # an absolute change: its unit (absent: a factor)
+                lines.append(f"scale = {_value(float(e.scale))}  # the spline's unit of an absolute change")
         for p in e.parameters:
             key = f"{e.name}.{p.name}"
             unc = f" ± {se[key]:.3g}" if key in se else ""
