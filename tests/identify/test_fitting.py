@@ -86,3 +86,21 @@ def test_a_misfit_fit_along_the_torque_scale_valley_settles_within_its_budget(se
     long = calibrate(data, effects, plan, max_iterations=10 * fitting.MAX_ITERATIONS)
     assert fit.fit_info["stages"][0]["nfev"] < 2000
     assert abs(fit.bic - long.bic) < 0.5
+
+
+@pytest.mark.parametrize("seed,hidden,effects", [
+    (0, ["friction_quadratic", "modulus_sigmoid"], ["friction_temperature"]),     # misfit: a large residual
+    (1, ["creep_exponential"], ["lining_creep"]),                                   # the effect in its own form
+])
+def test_the_stopping_tolerance_settles_what_the_criteria_and_intervals_read(seed, hidden, effects, monkeypatch):
+    """Stopped at TOLERANCE, a fit with the brake parameters free ends where a fit stopped at 1e-12 ends:
+    BIC within 0.01 (the selection threshold is 10), every value within 0.05 of its standard error."""
+    from rollaway.identify.model import DrumPlan
+    data = generate(hidden, sampling="1min", seed=seed, n_forces=3, drum={"drum_radius_m": 0.100})
+    plan = DrumPlan(None, BRAKE[:3] + BRAKE[4:])
+    fit = calibrate(data, effects, plan)
+    monkeypatch.setattr(fitting, "TOLERANCE", 1e-12)
+    tight = calibrate(data, effects, plan)
+    assert abs(fit.bic - tight.bic) < 0.01
+    for name, e in tight.estimates.items():
+        assert abs(fit.values[name] - e.value) <= 0.05 * e.stderr, name

@@ -30,6 +30,7 @@ from rollaway.bench.measurements import Measurements
 from rollaway.identify.model import INITIAL_TEMP, BenchModel, ambient_varies
 
 MAX_OUTER = 4
+TOLERANCE = 1e-7             # MINPACK's ftol, xtol and gtol (see solve)
 MAX_ITERATIONS = 25          # a pass's MINPACK budget: MAX_ITERATIONS·(k + 1) residual calls (SciPy ≥ 1.16 counts
                              # them without the Jacobian's difference quotients: up to that many iterations; see
                              # docs/identification.md, "The screens' budget, measured")
@@ -139,7 +140,7 @@ class Problem:
         r = r0 + np.einsum("ij,ij->i", gm, d[self.rows_test])
         return r, step, grads, normal
 
-    def solve(self, start: dict, tol: float = 1e-10, jacobian: bool = True,
+    def solve(self, start: dict, tol: float | None = None, jacobian: bool = True,
               max_iterations: int = MAX_ITERATIONS) -> Solution:
         """Fit the globals (and per-test families); *jacobian*: also the projected Jacobian for errors.
 
@@ -151,8 +152,14 @@ class Problem:
         rather than by MINPACK's running column norms (``x_scale="jac"``, which only grow: a parameter
         the residual was steep in far from the optimum keeps a tiny trust radius, and a fit along a
         curved valley, μ_d against the arm ratio and the eq. (24) slope, crawls to its budget).
+        A pass stops when the relative reduction of the sum of squares or the relative step falls below
+        *tol* (:data:`TOLERANCE`, 1e-7): the sum of ≈ 2·N squared standardised rows is then settled to
+        ≈ 2·N·1e-7 (0.002 at 10 000 rows, against a selection threshold of 10), and misfit fits —
+        Gauss–Newton converges only linearly where the residual is large — no longer spend their last
+        iterations on digits no criterion reads.
         """
         model, names = self.model, self.names
+        tol = TOLERANCE if tol is None else tol
         vals = {**self.values, **{n: start[n] for n in names if n in start}}
         for f in self.families:
             vals[f] = np.array(vals[f], float, copy=True)
