@@ -239,3 +239,32 @@ def test_a_none_verdict_names_an_effect_that_clears_the_verdicts_bar_once_the_dr
     assert d.verdict == "none" and [a["effects"] for a in weak][:1] == [["lining_creep"]], d.summary()
     assert weak[0]["delta_bic"] < BIC_THRESHOLD and "imitates it" in weak[0]["why"]
     assert verdict_line(d.verdict, d.alternatives).startswith("none (suggested, not established: lining_creep")
+
+
+def test_a_shape_free_form_that_clears_the_structure_ranks_its_effect_among_the_closest():
+    """A friction that fades above 150 °C (a hinge the catalogue lacks; its friction law is linear), 1-min, one
+    direction, hot and cool starts, five drums: where the verdict is "none" with structure left, the stiffness law's
+    three parameters can bend further than a linear friction and win on BIC, yet only a function of temperature
+    clears the structure.  The shape-free fits rank friction_temperature among the closest (≤ 2) in every such
+    campaign, flagged as clearing it, and the bands carry those shape-free fits."""
+    from rollaway.identify.diagnose import diagnose
+    from tests.identify.bench_generator import OTHER_DRUMS, generate
+    drums = [{}] + list(OTHER_DRUMS.values())
+    structured = clears = 0
+    for seed in range(600, 612):
+        data = generate(["friction_fade_above"], sampling="1min", seed=seed, drum=drums[seed % len(drums)],
+                        directions=(("downhill",), ("uphill",))[seed % 2], n_forces=3 + seed % 2,
+                        t0_range=(110.0, 290.0))
+        d = diagnose(data)
+        if d.verdict != "none" or not d.remaining_structure:
+            continue
+        structured += 1
+        assert 1 <= len(d.alternatives) <= 2 and all(a["kind"] == "closest" for a in d.alternatives)
+        assert "friction_temperature" in {a["effects"][0] for a in d.alternatives}, d.summary()
+        flagged = [a for a in d.alternatives if a.get("clears")]
+        clears += bool(flagged)
+        if flagged:
+            assert "shape-free, " in d.summary().splitlines()[0]
+            saved = [f for _, f in d.refined.fit_info["alternatives"]]
+            assert all(any(f is a["shape_fit"] or f.effects == a["shape_fit"].effects for f in saved) for a in flagged)
+    assert structured >= 6 and clears >= structured - 2, (structured, clears)

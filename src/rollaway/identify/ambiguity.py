@@ -139,30 +139,60 @@ def set_rivals(data, plan, names: list[str], chosen: list[str], current, inflati
     return sorted(out, key=lambda a: a["delta_bic"])[:MAX_RIVALS]
 
 
-def closest(base, candidates: list, base_cv, threshold: float, validity: dict, noise_torque_Nm: float) -> list[dict]:
+def closest(base, candidates: list, base_cv, threshold: float, validity: dict, noise_torque_Nm: float,
+            shapes: dict | None = None) -> list[dict]:
     """Where structure remains that no catalogue form clears: the candidates of the first step that point at
     the physics — ΔBIC below *threshold* against the calibrated drum *base* and better held-out prediction
     (*base_cv*); when none predicts better (with few tests each one left out is an extrapolation), those with
     the ΔBIC alone, saying so — the best :data:`MAX_RIVALS` by BIC (two forms that both leave structure are not ranked by
     the evidence between them); each ``{"kind": "closest", "effects", "delta_bic" (against the drum alone),
-    "heldout_elpd", "heldout_se" (against the drum alone), "why", "tell_apart", "fit"}``.  With two, the test
-    that would tell them apart; with one, where it departs most from the drum alone."""
-    strong = [c for c in candidates if c.delta_bic < threshold and c.fit.jacobian is not None]
-    ok = [c for c in strong if c.cv_score is not None and base_cv is not None and c.cv_score < base_cv]
+    "heldout_elpd", "heldout_se" (against the drum alone), "why", "tell_apart", "fit", "clears"}``.  With two, the
+    test that would tell them apart; with one, where it departs most from the drum alone.
+
+    *shapes*: ``{effect: (shape-free fit, clears the structure)}`` of candidates also fitted shape-free
+    (:func:`rollaway.identify.shape.candidate_shapes`).  A candidate is then judged by the better of its two forms
+    by BIC; one whose shape-free form clears the structure (and predicts held-out tests better than the drum) joins
+    them and ranks before those that leave it: the quantity it changes explains the data, in a shape the catalogue
+    does not write.
+    ``"shape_fit"`` then holds the shape-free fit, and the test that would tell two apart compares their better
+    forms."""
     if base.jacobian is None:
         return []
-    held_out_against = not ok          # none predicts held-out tests better (few tests: each left out is extrapolated)
+    shapes = shapes or {}
+
+    def better(c):                                    # (fit, ΔBIC, shape-free form cleared the structure)
+        s = shapes.get(c.effect)
+        if s is not None and s[0].bic < c.fit.bic:
+            return s[0], float(s[0].bic - base.bic), bool(s[1])
+        return c.fit, float(c.delta_bic), False
+
+    forms = {c.effect: better(c) for c in candidates if c.fit.jacobian is not None}
+    strong = [c for c in candidates if c.effect in forms and forms[c.effect][1] < threshold]
+    cleared = {c.effect for c in strong if forms[c.effect][2] and heldout_difference(base, forms[c.effect][0])[0] > 0}
+    ok = [c for c in strong if c.cv_score is not None and base_cv is not None and c.cv_score < base_cv]
+    held_out_against = not ok and not cleared      # none predicts held-out tests better (few tests: each left out
+    pool = ok or [c for c in strong if c.effect not in cleared]           # is an extrapolation)
+    pool = [c for c in strong if c.effect in cleared and c not in pool] + pool
     out = []
-    for c in sorted(ok or strong, key=lambda c: c.delta_bic)[:MAX_RIVALS]:
+    for c in sorted(pool, key=lambda c: (c.effect not in cleared, forms[c.effect][1]))[:MAX_RIVALS]:
         elpd, se = heldout_difference(base, c.fit)
-        out.append({"kind": "closest", "effects": [c.effect], "delta_bic": float(c.delta_bic), "heldout_elpd": elpd,
-                    "heldout_se": se, "fit": c.fit,
-                    "why": f"ΔBIC {c.delta_bic:.1f} and held-out log score {elpd:+.1f} ± {se:.1f} against the drum alone"
-                           + (" (the held-out prediction does not support it)" if held_out_against else "")})
+        why = (f"ΔBIC {c.delta_bic:.1f} and held-out log score {elpd:+.1f} ± {se:.1f} against the drum alone"
+               + (" (the held-out prediction does not support it)" if held_out_against else ""))
+        a = {"kind": "closest", "effects": [c.effect], "delta_bic": float(c.delta_bic), "heldout_elpd": elpd,
+             "heldout_se": se, "fit": c.fit, "clears": c.effect in cleared, "why": why}
+        if c.effect in shapes:
+            fit = shapes[c.effect][0]
+            dbic = float(fit.bic - base.bic)
+            e2, se2 = heldout_difference(base, fit)
+            a["shape_fit"] = fit
+            a["why"] += (f"; shape-free ΔBIC {dbic:.1f}, held-out {e2:+.1f} ± {se2:.1f}, "
+                         + ("clears the structure" if c.effect in cleared else "leaves structure"))
+        out.append(a)
     if not out:
         return []
-    other = out[1]["fit"] if len(out) > 1 else base
-    words = tell_apart(out[0]["fit"], other, validity, noise_torque_Nm)
+    first = forms[out[0]["effects"][0]][0]
+    other = forms[out[1]["effects"][0]][0] if len(out) > 1 else base
+    words = tell_apart(first, other, validity, noise_torque_Nm)
     for a in out:
         a["tell_apart"] = words
     return out
@@ -291,9 +321,13 @@ def alternative_words(verdict: str, alternatives: list[dict]) -> list[str]:
         return []
     kind = alternatives[0].get("kind")
     if kind == "closest":
+        clear = [a["effects"][0] for a in alternatives if a.get("clears")]
         return [f"Closest in the catalogue: {' or '.join(a['effects'][0] for a in alternatives)} — "
                 + "; ".join(f"{a['effects'][0]}: {a['why']}" for a in alternatives)
-                + ".  Each leaves structure: they point at the physics, they do not explain it"
+                + (".  Each catalogue form leaves structure; the shape-free form of " + " and of ".join(clear)
+                   + " clears it: the quantity it changes explains the data, in a shape the catalogue does not write "
+                   "(write that shape as a plugin and refit)" if clear else
+                   ".  Each leaves structure: they point at the physics, they do not explain it")
                 + (f"; these data cannot tell them apart — {alternatives[0]['tell_apart']['words']}."
                    if len(alternatives) > 1 else ".")]
     return [f"{a['effects'][0]} is not ruled out: {a['why']}; {a['tell_apart']['words']}." if a.get("kind") == "weak"
@@ -316,8 +350,10 @@ def verdict_line(verdict: str, alternatives: list[dict], detection=()) -> str:
         return (f"none (suggested, not established: {names}); {alternatives[0]['tell_apart']['words']}")
     if alternatives[0].get("kind") == "closest":
         names = " or ".join(a["effects"][0] for a in alternatives)
-        return (f"none: structure remains that no catalogue effect explains; closest: {names} (each leaves "
-                f"structure)" + (f"; these data cannot tell them apart; {alternatives[0]['tell_apart']['words']}"
+        clear = [a["effects"][0] for a in alternatives if a.get("clears")]
+        return (f"none: structure remains that no catalogue effect explains; closest: {names} ("
+                + (f"each catalogue form leaves structure; shape-free, {' and '.join(clear)} clear"
+                   f"{'s' if len(clear) == 1 else ''} it)" if clear else "each leaves structure)") + (f"; these data cannot tell them apart; {alternatives[0]['tell_apart']['words']}"
                                  if len(alternatives) > 1 else ""))
     names = " or ".join([" + ".join(alternatives[0].get("verdict_effects") or [verdict])]
                         + [" + ".join(a["effects"]) for a in alternatives])

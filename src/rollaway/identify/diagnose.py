@@ -13,7 +13,8 @@
    :mod:`rollaway.identify.shape`); if that clears the structure the effect is named with
    ``form: "partial"`` and the shape the data want is returned.  Otherwise nothing is
    claimed: verdict ``none`` with ``remaining_structure: true`` (an effect outside the
-   catalogue remains).
+   catalogue remains), and the closest candidates named beside it are ranked by their shape-free forms too
+   (:func:`rollaway.identify.shape.candidate_shapes`): one whose shape-free form clears the structure first.
 4. A second effect is named only on its own evidence (:func:`rollaway.identify.partner.own_evidence`); a
    ``none`` verdict may carry weak alternatives (:func:`rollaway.identify.ambiguity.weak_alternatives`).
 5. The chosen model gets what the road bands draw: its predictive record and the competing effect sets
@@ -39,7 +40,7 @@ from rollaway.identify.detection import detection_limits, hidden_shifts, hidden_
 from rollaway.identify.diagnose_words import describe_residual, no_candidate_words, noise_words, structure_words
 from rollaway.identify.partner import own_evidence
 from rollaway.identify.predictive_set import attach_predictive, interval_words
-from rollaway.identify.shape import channel_alternatives, form_rivals, other_form_rivals, shape_rivals
+from rollaway.identify.shape import candidate_shapes, channel_alternatives, other_form_rivals, shape_rivals
 from rollaway.identify.selection import (BIC_THRESHOLD, SCREEN_ITERATIONS, Candidate, cv_score, eliminate, exchange,
                                          folds, forward_step, has_per_test, per_test_signature, structure,
                                          weighted_chi2)
@@ -236,8 +237,9 @@ def diagnose(data: Measurements, params=None, effects=None, *, noise_torque_Nm: 
         for a in rivalry:
             a["tell_apart"] = tell_apart(refined, a["fit"], validity(full), nq.sigma)
     if verdict == "none" and remaining and not rivalry:
-        rivalry = closest(base, first_cands, base_cv, BIC_THRESHOLD, validity(full), nq.sigma)
-        forms = form_rivals(data, [a["fit"] for a in rivalry], drum.plan)   # the closest effects' own shapes
+        shapes = candidate_shapes(data, first_cands, drum.plan, nq, nt)    # which quantity, whatever its form
+        rivalry = closest(base, first_cands, base_cv, BIC_THRESHOLD, validity(full), nq.sigma, shapes)
+        forms = [a["shape_fit"] for a in rivalry if "shape_fit" in a]       # the closest effects' own shapes
     weak = weak_alternatives(params, base, first_cands, validity(full), nq.sigma) if not chosen and not remaining else []
     indist = [" + ".join(a["effects"]) for a in rivalry + weak]
     ev += alternative_words(verdict, rivalry + weak)

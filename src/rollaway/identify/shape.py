@@ -92,6 +92,26 @@ def form_rivals(data, fits, params) -> list:
     return _fitted(data, [j for f in (fits if isinstance(fits, (list, tuple)) else [fits]) for j in _form_jobs(f, params)])
 
 
+SHAPE_TOP = 4                 # step-1 candidates fitted shape-free where no catalogue form clears the structure
+
+
+def candidate_shapes(data, candidates, params, nq, nt, top: int = SHAPE_TOP) -> dict:
+    """The best *top* step-1 *candidates* that lowered BIC against the drum, each fitted alone in its shape-free
+    form (:func:`flexible_effect`, brake parameters of *params*, side by side on the machine's cores):
+    ``{effect: (fit, clears)}``, *clears* true when that fit's residual holds no structure
+    (:func:`rollaway.identify.selection.structure` with the channel noises *nq*, *nt*).  Where no catalogue form
+    clears the structure, the catalogue's ranking by BIC measures how well each *form* bends to the data, not
+    which quantity changes: a friction that fades above a temperature, written linear, can lose to a three-parameter
+    stiffness law that fits neither; its shape-free form clears the structure and says which quantity it is."""
+    from rollaway.identify.selection import structure
+    pool = [c for c in sorted(candidates, key=lambda c: c.delta_bic)
+            if c.delta_bic < 0 and c.fit.jacobian is not None][:top]
+    jobs = [(c.effect, job) for c in pool for job in _form_jobs(c.fit, params)]
+    from rollaway.identify.workers import fit_all
+    done = fit_all(data, [j for _, j in jobs]) if jobs else []
+    return {e: (f, not structure(f, nq, nt)["structured"]) for (e, _), f in zip(jobs, done) if f.jacobian is not None}
+
+
 def channel_rivals(data, fit, candidates, params) -> list:
     """*fit*'s effect set with one effect in turn replaced by the shape-free version of another effect that changes
     another quantity along the same covariate (a friction and a lining modulus, both functions of the lining
