@@ -135,7 +135,7 @@ def shape_rivals(data, fit, params, candidates=()) -> tuple[list, list]:
             [f for f, g in zip(done[len(forms):], ok[len(forms):]) if g])
 
 
-OTHER_FORM_BIC = 2.0          # "positive" evidence (Kass & Raftery 1995) that another effect's shape fits better
+OTHER_FORM_BIC = 2.0          # below "positive" evidence (Kass & Raftery 1995: 2–6): two shapes this close are a tie
 
 
 def other_form_rivals(data, fit, own_shape, candidates, params) -> list[dict]:
@@ -146,11 +146,13 @@ def other_form_rivals(data, fit, own_shape, candidates, params) -> list[dict]:
     whose shape-free form has another covariate than the verdict's (a function of temperature against one of
     time: two functions of time are the same shape, a test of physics they are not) is fitted shape-free
     (:func:`flexible_effect`, brake parameters of *params*) and compared, freedom for freedom, with the verdict's
-    own shape-free form *own_shape*: it is not ruled out when its BIC is lower by :data:`OTHER_FORM_BIC` and it
-    predicts held-out tests at least as well as the verdict's catalogue form (:func:`rollaway.identify.ambiguity.
-    heldout_difference` ≥ 0).  Best first: ``{"kind": "rival", "form": "shape-free", "effects", "delta_bic"
-    (against *fit*), "heldout_elpd", "heldout_se", "why", "fit"}`` (*fit* the shape-free one)."""
-    from rollaway.identify.ambiguity import heldout_difference
+    own shape-free form *own_shape*: it is not ruled out when its BIC is no more than :data:`OTHER_FORM_BIC` above
+    that form's (lower, or a tie: where time and temperature fall together, a function of either fits, and the
+    verdict's catalogue form fitting only says the catalogue wrote that one well) and the held-out prediction does
+    not prefer the verdict's shape-free form (:func:`rollaway.identify.ambiguity.not_ruled_out`).  Best first:
+    ``{"kind": "rival", "form": "shape-free", "effects", "delta_bic" (against *fit*), "heldout_elpd",
+    "heldout_se" (against *fit*), "why", "fit"}`` (*fit* the shape-free one)."""
+    from rollaway.identify.ambiguity import heldout_difference, not_ruled_out
     from rollaway.identify.workers import fit_all
     found = shape_hook(fit.model.effects[0])
     if own_shape is None or own_shape.jacobian is None or found is None:
@@ -167,17 +169,18 @@ def other_form_rivals(data, fit, own_shape, candidates, params) -> list[dict]:
     out = []
     shapes = fit_all(data, [([cls], params, dict(start=fit.values)) for _, cls in flex])
     for (name, cls), shaped in zip(flex, shapes):
-        if shaped.jacobian is None or shaped.bic > own_shape.bic - OTHER_FORM_BIC:
+        if shaped.jacobian is None or shaped.bic > own_shape.bic + OTHER_FORM_BIC or not not_ruled_out(own_shape, shaped):
             continue
         elpd, se = heldout_difference(fit, shaped)
-        if elpd < 0.0:
-            continue
         out.append({"kind": "rival", "form": "shape-free", "effects": [name], "delta_bic": float(shaped.bic - fit.bic),
                     "heldout_elpd": elpd, "heldout_se": se, "fit": shaped,
-                    "why": (f"{name} in a shape-free form (a spline in {cls.covariate}) fits better than {verdict} in "
-                            f"one (BIC lower by {own_shape.bic - shaped.bic:.1f}) and predicts held-out tests at least "
-                            f"as well as {verdict} (Δ log score {elpd:+.1f} ± {se:.1f}): its catalogue form does not "
-                            f"fit, another form of it would")})
+                    "why": (f"{name} in a shape-free form (a spline in {cls.covariate}) fits "
+                            + (f"better than {verdict} in one (BIC lower by {own_shape.bic - shaped.bic:.1f})"
+                               if shaped.bic < own_shape.bic else
+                               f"as well as {verdict} in one (BIC within {OTHER_FORM_BIC:g}: "
+                               f"{shaped.bic - own_shape.bic:+.1f})")
+                            + f" and the held-out tests do not prefer {verdict}'s (Δ log score against {verdict} "
+                            f"{elpd:+.1f} ± {se:.1f}): its catalogue form does not fit, another form of it would")})
     return sorted(out, key=lambda a: a["delta_bic"])
 
 
