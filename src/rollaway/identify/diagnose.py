@@ -152,7 +152,7 @@ def diagnose(data: Measurements, params=None, effects=None, *, noise_torque_Nm: 
     if len(chosen) == 2:
         pair, pair_clean = list(chosen), not struct["structured"]
         chosen, current, struct, fits = own_evidence(data, params, chosen, current, struct, fits, nq, nt, steps, ev,
-                                                     drum.held(), names)
+                                                     drum.held(), names, drum.departures())
         partner = next((e for e in pair if e not in chosen), None) if len(chosen) == 1 and pair_clean else None
     if partner or (len(chosen) >= 2 and struct["structured"]):
         # a partner that cleared the residual, or structure left by two effects each with evidence of its own, may

@@ -104,6 +104,16 @@ class DrumCalibration:
             return ()
         return tuple(n for n, e in self.entries.items() if e.status == "fixed" and "not needed" in e.reason)
 
+    def departures(self) -> tuple[str, ...]:
+        """:meth:`held`, and the brake parameters held because torque and temperature logs cannot tell them from
+        another (the gap, which adds to the lining thickness in eq. (16b)): the departures of a drum from the set
+        that a second effect must not stand in for (:func:`rollaway.identify.partner.own_evidence` frees them in
+        both fits it compares).  None when the user chose the free set."""
+        if self.selection.startswith("chosen by you"):
+            return ()
+        return self.held() + tuple(n for n, e in self.entries.items()
+                                   if e.status == "fixed" and not FREE_PARAMETERS[n].automatic)
+
     def fixed_priors(self) -> dict[str, float]:
         """Assumed spreads of the brake parameters left at their assumed values (for the bands)."""
         return {n: e.prior_sd for n, e in self.entries.items() if e.prior_sd and e.status != "fitted"}

@@ -37,7 +37,8 @@ def beyond_reform(data, params, chosen: list[str], current: FitResult, two: FitR
     own standard errors.
 
     *refree*: brake parameters the drum calibration held at their assumed values although the data test
-    them ("not needed" without any effect): both compared fits free them.  A brake parameter that was not
+    them ("not needed" without any effect), or held because the logs cannot tell them from another (the gap, a
+    thicker lining in eq. (16b)): both compared fits free them.  A brake parameter that was not
     needed by the bare drum can be needed once the first effect is in, and a second effect that stands in
     for it (a gap or a radial contraction for a lining of another thickness) is then no discovery; with them
     freed, the second effect must also still lower BIC below :data:`BIC_THRESHOLD` against the first effect alone
@@ -157,10 +158,14 @@ def _within_tests(d, r: np.ndarray, channels: set[str]) -> np.ndarray:
     return r
 
 
-def own_evidence(data, params, chosen, current, struct, fits, nq, nt, steps, ev, refree=(), names=()):
+def own_evidence(data, params, chosen, current, struct, fits, nq, nt, steps, ev, refree=(), names=(), departures=()):
     """Keep the second of two selected effects only if it predicts held-out tests better than the first
     re-formed, with the brake parameters *refree* (held as not needed by the bare drum) freed in both
-    (:func:`beyond_reform`); else the effect of *names* that does beside the first re-formed
+    (:func:`beyond_reform`) — and, where it does, still with *departures* freed too (held by the bare drum because
+    the logs cannot tell them from another: :meth:`rollaway.identify.drum.DrumCalibration.departures`; a lining
+    creep can stand in for a thicker, softer lining than the set's, which the gap imitates in eq. (16b); asked
+    only of a pair that passes, since those fits are slow: the gap and μ_d are nearly one direction of the
+    least-squares problem); else the effect of *names* that does beside the first re-formed
     (:func:`beside_reformed`), or none: keep the first alone.  A pair that passes is kept only if the first, in
     turn, predicts better than the second re-formed; else the second alone (the first only absorbed its form
     mismatch: a friction change beside a creep whose catalogue law flattens too early).  Logs to *steps*, explains in *ev*;
@@ -168,6 +173,9 @@ def own_evidence(data, params, chosen, current, struct, fits, nq, nt, steps, ev,
 
     The first is the one that explains more alone (lower BIC, both refitted with the same brake parameters): the
     order of the forward steps was decided with the drum of that step, which a later step may have freed further."""
+    from rollaway.model.drum_parameters import FREE_PARAMETERS
+    refree = tuple(refree)
+    departures = tuple(n for n in departures if n not in refree and FREE_PARAMETERS[n].effect not in chosen)
     alone = fit_all(data, [([c], params, dict(start=current.values)) for c in chosen])
     by_name = dict(zip(chosen, alone))
     if alone[1].bic < alone[0].bic:
@@ -182,6 +190,11 @@ def own_evidence(data, params, chosen, current, struct, fits, nq, nt, steps, ev,
     if own is None:
         return chosen, current, struct, fits
     reform = own.pop("also")
+    if own["passes"] and departures:
+        wider = beyond_reform(data, params, chosen[:1], current, current, refree + departures)
+        if wider is not None and not wider["passes"]:
+            wider.pop("also", None)
+            own, refree = dict(wider, departures=list(departures)), refree + departures
     steps.append({"step": "own evidence", "effect": chosen[1], "kept": own["passes"], "beyond_reform": own})
     if own["passes"]:
         back = beyond_reform(data, params, chosen[1:], current, current, refree)
