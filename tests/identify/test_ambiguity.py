@@ -61,6 +61,7 @@ def test_verdict_line_names_every_alternative_and_the_test():
     line = verdict_line("friction_temperature", alts)
     assert line.startswith("friction_temperature or modulus_temperature: these data cannot tell them apart; a test")
     assert verdict_line("none", []) == "none"
+    assert verdict_line("none", [], structure=True).startswith("none: structure remains that no catalogue effect")
 
 
 def test_friction_and_modulus_on_one_direction_are_named_together_with_the_direction_as_the_test():

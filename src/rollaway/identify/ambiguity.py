@@ -335,10 +335,14 @@ def alternative_words(verdict: str, alternatives: list[dict]) -> list[str]:
                  f"cannot tell them apart — {a['why']}; {a['tell_apart']['words']}." for a in alternatives]
 
 
-def verdict_line(verdict: str, alternatives: list[dict], detection=()) -> str:
+def verdict_line(verdict: str, alternatives: list[dict], detection=(), structure: bool = False) -> str:
     """"A or B: these data cannot tell them apart; a test at … would" (or the verdict alone); for a verdict
     ``none`` with the closest catalogue effects (:func:`closest`): "none explains …; closest: A or B"; for a bare
-    ``none`` whose *detection* limits (:mod:`rollaway.identify.detection`) exceed typical sizes: what could hide."""
+    ``none`` whose *detection* limits (:mod:`rollaway.identify.detection`) exceed typical sizes: what could hide; for
+    a ``none`` whose residual keeps *structure* and no candidate points anywhere: that structure remains."""
+    if not alternatives and verdict == "none" and structure:
+        return ("none: structure remains that no catalogue effect explains (no candidate lowers BIC enough to point "
+                "at one)")
     if not alternatives:
         from rollaway.identify.detection import blind
         missed = blind(detection) if verdict == "none" else []

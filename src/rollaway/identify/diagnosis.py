@@ -59,7 +59,8 @@ class Diagnosis(CalibratedModelMixin):
                 "paper": {"rmse_torque_Nm": self.paper.rmse_torque_Nm, "rmse_temp_C": self.paper.rmse_temp_C},
                 "baseline": {**rm(self.baseline), "cv_score": self.baseline_cv},
                 "candidates": [c.as_dict() for c in self.candidates],
-                "verdict": self.verdict, "verdict_line": verdict_line(self.verdict, self.alternatives, self.detection),
+                "verdict": self.verdict, "verdict_line": verdict_line(self.verdict, self.alternatives, self.detection,
+                                                                     self.remaining_structure),
                 "alternatives": [{k: v for k, v in a.items() if k != "fit"} for a in self.alternatives],
                 "effects": self.effects,
                 "indistinguishable_from": self.indistinguishable_from,
@@ -81,7 +82,8 @@ class Diagnosis(CalibratedModelMixin):
 
     def summary(self) -> str:
         forms = ", ".join(f"{e['effect']} ({e['form']})" for e in self.effects)
-        lines = [f"verdict: {verdict_line(self.verdict, self.alternatives, self.detection)}" + (f"   effects: {forms}" if len(self.effects) > 1 or
+        head = verdict_line(self.verdict, self.alternatives, self.detection, self.remaining_structure)
+        lines = [f"verdict: {head}" + (f"   effects: {forms}" if len(self.effects) > 1 or
                                                 any(e["form"] != "exact" for e in self.effects) else "")]
         lines += [f"  {w}" for w in self.evidence]
         lines.append("")
