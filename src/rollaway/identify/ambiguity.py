@@ -315,21 +315,37 @@ def tell_apart(a, b, validity: dict, noise_torque_Nm: float) -> dict:
             "by_factor_Nm": by, "factor": factor, "words": words}
 
 
+def _closest_clause(alternatives: list[dict]) -> tuple[str, str]:
+    """(what the closest effects' forms leave, what the data say between them) of :func:`closest`'s output."""
+    names = [a["effects"][0] for a in alternatives]
+    clear = [n for a, n in zip(alternatives, names) if a.get("clears")]
+    words = alternatives[0]["tell_apart"]["words"]
+    if not clear:
+        return "each leaves structure", (f"these data cannot tell them apart; {words}" if len(names) > 1 else "")
+    forms = "its catalogue form leaves" if len(names) == 1 else "each catalogue form leaves"
+    if len(clear) == len(names):
+        return (f"{forms} structure; shape-free, {' and '.join(clear)} clear{'s' if len(clear) == 1 else ''} it",
+                f"these data cannot tell them apart; {words}" if len(names) > 1 else "")
+    rest = [n for n in names if n not in clear]
+    return (f"{forms} structure; shape-free, {clear[0]} clears it, {rest[0]} does not",
+            f"the data lean to {clear[0]}; {words}")
+
+
 def alternative_words(verdict: str, alternatives: list[dict]) -> list[str]:
     """The evidence lines of a verdict's alternatives (rivals, closest or weak)."""
     if not alternatives:
         return []
     kind = alternatives[0].get("kind")
     if kind == "closest":
-        clear = [a["effects"][0] for a in alternatives if a.get("clears")]
+        left, between = _closest_clause(alternatives)
+        clear = any(a.get("clears") for a in alternatives)
         return [f"Closest in the catalogue: {' or '.join(a['effects'][0] for a in alternatives)} — "
                 + "; ".join(f"{a['effects'][0]}: {a['why']}" for a in alternatives)
-                + (".  Each catalogue form leaves structure; the shape-free form of " + " and of ".join(clear)
-                   + " clears it: the quantity it changes explains the data, in a shape the catalogue does not write "
-                   "(write that shape as a plugin and refit)" if clear else
-                   ".  Each leaves structure: they point at the physics, they do not explain it")
-                + (f"; these data cannot tell them apart — {alternatives[0]['tell_apart']['words']}."
-                   if len(alternatives) > 1 else ".")]
+                + f".  {left[0].upper()}{left[1:]}"
+                + (": the quantity a shape-free form changes explains the data, in a shape the catalogue does not "
+                   "write (write that shape as a plugin and refit)" if clear else
+                   ": they point at the physics, they do not explain it")
+                + (f"; {between}." if between else ".")]
     return [f"{a['effects'][0]} is not ruled out: {a['why']}; {a['tell_apart']['words']}." if a.get("kind") == "weak"
             else f"{' + '.join(a.get('verdict_effects') or [verdict])} or {' + '.join(a['effects'])}: these data "
                  f"cannot tell them apart — {a['why']}; {a['tell_apart']['words']}." for a in alternatives]
@@ -354,11 +370,9 @@ def verdict_line(verdict: str, alternatives: list[dict], detection=(), structure
         return (f"none (suggested, not established: {names}); {alternatives[0]['tell_apart']['words']}")
     if alternatives[0].get("kind") == "closest":
         names = " or ".join(a["effects"][0] for a in alternatives)
-        clear = [a["effects"][0] for a in alternatives if a.get("clears")]
-        return (f"none: structure remains that no catalogue effect explains; closest: {names} ("
-                + (f"each catalogue form leaves structure; shape-free, {' and '.join(clear)} clear"
-                   f"{'s' if len(clear) == 1 else ''} it)" if clear else "each leaves structure)") + (f"; these data cannot tell them apart; {alternatives[0]['tell_apart']['words']}"
-                                 if len(alternatives) > 1 else ""))
+        left, between = _closest_clause(alternatives)
+        return (f"none: structure remains that no catalogue effect explains; closest: {names} ({left})"
+                + (f"; {between}" if between else ""))
     names = " or ".join([" + ".join(alternatives[0].get("verdict_effects") or [verdict])]
                         + [" + ".join(a["effects"]) for a in alternatives])
     return f"{names}: these data cannot tell them apart; {alternatives[0]['tell_apart']['words']}"
