@@ -92,6 +92,20 @@ def test_a_partial_verdict_names_the_other_quantity_its_spline_cannot_be_told_fr
     assert "these data cannot tell them apart" in line and "facing uphill" in line, line
 
 
+def test_a_channel_rival_is_weighed_though_its_catalogue_form_scored_worse_than_the_drum():
+    """Held-out campaign 320 (not among those the rules were written on): friction fading above 150 °C, two tests
+    facing downhill.  The bare drum is badly misfit and its friction candidate, fitted by χ², bends the temperature
+    channel and scores worse than the drum (ΔBIC > 0); modulus_temperature is the verdict ("partial").  Friction's
+    spline is still weighed against the modulus spline, ties it, and is named beside the verdict."""
+    hidden, data = campaign(320)
+    assert hidden == "friction_fade_above"
+    d = diagnose(data)
+    assert d.verdict == "modulus_temperature" and d.effects[0]["form"] == "partial"
+    assert next(c for c in d.candidates if c.effect == "friction_temperature").delta_bic > 0
+    alt = next(a for a in d.alternatives if a.get("channel"))
+    assert alt["effects"] == ["friction_temperature"] and judge(hidden, d)["right_or_alternative"]
+
+
 @pytest.mark.parametrize("i", [31, 43, 55, 67])
 def test_both_directions_tell_friction_from_a_modulus_in_any_shape(i):
     """Friction rising with the square of the temperature, tested in both directions: the catalogue's linear form

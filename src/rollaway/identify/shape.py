@@ -69,7 +69,7 @@ def _channel_jobs(fit, candidates, params) -> list:
             continue
         for c in candidates:
             hook = shape_hook(get_effect(c.effect))
-            if c.effect in names or c.delta_bic >= 0 or hook is None or hook[1] != found[1] or hook[0] == found[0]:
+            if c.effect in names or hook is None or hook[1] != found[1] or hook[0] == found[0]:
                 continue
             cls = flexible_effect(get_effect(c.effect), covariate_of(fit, hook[1]))
             if cls is not None:
@@ -115,8 +115,10 @@ def candidate_shapes(data, candidates, params, nq, nt, top: int = SHAPE_TOP) -> 
 def channel_rivals(data, fit, candidates, params) -> list:
     """*fit*'s effect set with one effect in turn replaced by the shape-free version of another effect that changes
     another quantity along the same covariate (a friction and a lining modulus, both functions of the lining
-    temperature; a cable relaxation and a lining creep, both of time), for each step-1 *candidate* that lowered BIC
-    against the drum: refitted with the brake parameters *params* frees.  Where the verdict's catalogue form leaves
+    temperature; a cable relaxation and a lining creep, both of time), for each step-1 *candidate* — whether or not
+    its catalogue form lowered BIC against the drum: where no catalogue form fits, a misfit fit can bend the
+    temperature channel to ease the torque and score worse than the drum it contains (a friction fade on one
+    direction), and its quantity is still the verdict's rival — refitted with the brake parameters *params* frees.  Where the verdict's catalogue form leaves
     structure, the data say that *something* changes along that covariate, not through which quantity; a spline in
     the verdict's own quantity then fits the tested conditions whichever it is, and errs only where the quantities
     part (the other direction, another hand force).  These fits put the other quantity's spline into the bands,
