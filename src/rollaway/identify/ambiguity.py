@@ -130,12 +130,16 @@ def set_rivals(data, plan, names: list[str], chosen: list[str], current, inflati
         if fit.jacobian is None or dbic >= INDISTINGUISHABLE_BIC:
             continue
         elpd, se = heldout_difference(current, fit)
-        if elpd <= -preference_margin(current, se):
+        margin = preference_margin(current, se)
+        if elpd <= -margin:
             continue
         out.append({"kind": "rival", "effects": list(trial), "delta_bic": float(dbic), "heldout_elpd": elpd,
                     "heldout_se": se, "fit": fit, "verdict_effects": list(chosen),
-                    "why": f"BIC within {INDISTINGUISHABLE_BIC:g} ({dbic:+.1f}) and the held-out prediction does not "
-                           f"prefer either (Δ log score {elpd:+.1f} ± {se:.1f})"})
+                    "why": (f"BIC within {INDISTINGUISHABLE_BIC:g} ({dbic:+.1f})" if dbic > -INDISTINGUISHABLE_BIC else
+                            f"BIC lower than the verdict's by {-dbic:.1f}")
+                           + (" and the held-out prediction prefers it" if elpd > margin else
+                              " and the held-out prediction does not prefer either")
+                           + f" (Δ log score {elpd:+.1f} ± {se:.1f})"})
     return sorted(out, key=lambda a: a["delta_bic"])[:MAX_RIVALS]
 
 
