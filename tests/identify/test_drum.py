@@ -83,6 +83,17 @@ def test_one_hand_force_leaves_the_eq24_pair_confounded():
     assert all(dc.entries[n].prior_sd > 0 for n in fixed)        # their doubt is kept for the bands
 
 
+def test_the_departures_include_what_the_data_could_not_identify():
+    """The departures a second effect must not stand in for (:meth:`DrumCalibration.departures`): the held ones,
+    the gap, and a parameter the bare drum fixed as not identifiable (one hand force: the eq. (24) pair)."""
+    dc = calibrate_drum(generate(seed=7, forces=[300.0]))
+    unidentified = [n for n, e in dc.entries.items() if e.status == "fixed" and "not identifiable" in e.reason]
+    assert unidentified and set(unidentified) <= set(dc.departures())
+    assert "gap_m" in dc.departures() and set(dc.held()) <= set(dc.departures())
+    assert not set(dc.departures()) & set(dc.free)
+    assert calibrate_drum(generate(seed=7, forces=[300.0]), free=["mu_drum"]).departures() == ()
+
+
 def test_a_logged_ambient_is_read_not_fitted():
     dc = calibrate_drum(generate(seed=8, ambient_drift_C=2.0))
     assert dc.entries["ambient_temp_C"].status == "logged"

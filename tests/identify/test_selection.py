@@ -48,3 +48,27 @@ def test_own_channel_plan_frees_only_the_changed_channels_held_parameters():
     assert own_channel_plan(plan, "radiation_cooling", held).free == ("mu_drum", "heat_transfer_W_m2K")
     assert own_channel_plan(plan, "lining_creep", held) is plan          # a torque effect: nothing freed
     assert own_channel_plan(plan, "radiation_cooling", ()) is plan
+
+
+def test_the_exchange_finds_a_swap_that_needs_the_brake_parameters_refitted():
+    """A friction change quadratic in T on a thicker, softer lining, tests from T_0 spread over 100–300 °C: per-test
+    zero offsets and a cable relaxation are picked first.  Swapping the cable for friction_temperature lowers BIC by
+    ~60 once μ_d and the arm ratio are refitted beside it, but not with them held where the pair put them (the screen
+    then scored it 26 worse): the exchange screens every swap with the brake parameters free, so it finds the swap
+    that a full refit of each finds best."""
+    from rollaway.effects import available_effects
+    from rollaway.identify.calibrate import calibrate
+    from rollaway.identify.selection import exchange, structure
+    from tests.identify.heldout_names import campaign
+    d = diagnose(campaign(523)[1])
+    data, nq, nt = d.data, d.noise_torque, d.noise_temp
+    plan = DrumPlan(d.drum.params, ("mu_drum", "u6_slope_m_per_N", "u6_offset_m", "shoe_arm_ratio",
+                                    "heat_transfer_W_m2K"))
+    chosen = ["torque_zero_offset", "cable_relaxation"]
+    current = calibrate(data, chosen, plan)
+    names = list(available_effects())
+    got, fit, _, swaps = exchange(data, plan, names, chosen, current, structure(current, nq, nt), nq, nt)
+    full = min(calibrate(data, [chosen[0], new], plan, start=current.values).bic
+               for new in names if new not in chosen)
+    assert swaps and fit.bic <= full + 2.0, (got, fit.bic, full)
+    assert "friction_temperature" in got

@@ -38,7 +38,7 @@ from rollaway.bench.measurements import Measurements
 from rollaway.bench.noise import Noise, noise_estimate, sample_sigma
 from rollaway.identify.detection import detection_limits, hidden_shifts, hidden_words, limits_words
 from rollaway.identify.diagnose_words import describe_residual, no_candidate_words, noise_words, structure_words
-from rollaway.identify.partner import own_evidence
+from rollaway.identify.partner import own_evidence, stood_for
 from rollaway.identify.predictive_set import attach_predictive, interval_words
 from rollaway.identify.shape import candidate_shapes, channel_alternatives, other_form_rivals, shape_rivals
 from rollaway.identify.selection import (BIC_THRESHOLD, SCREEN_ITERATIONS, Candidate, cv_score, eliminate, exchange,
@@ -156,8 +156,9 @@ def diagnose(data: Measurements, params=None, effects=None, *, noise_torque_Nm: 
         partner = next((e for e in pair if e not in chosen), None) if len(chosen) == 1 and pair_clean else None
     if partner or (len(chosen) >= 2 and struct["structured"]):
         # a partner that cleared the residual, or structure left by two effects each with evidence of its own, may
-        # stand in for a brake parameter the bare drum held as not needed: free those the model with them needs
-        refit = free_needed(drum, data, chosen, current)
+        # stand in for a brake parameter the bare drum held as not needed, or could not identify where the partner
+        # was dropped with it freed: free those the model with them needs
+        refit = free_needed(drum, data, chosen, current, names=drum.held() + (stood_for(steps) if partner else ()))
         if refit is not None:
             params, current, struct = drum.plan, refit, structure(refit, nq, nt)
             fits = [None] * (len(chosen) - 1) + [refit]

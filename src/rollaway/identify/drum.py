@@ -41,6 +41,7 @@ MIN_SINGULAR_VALUE = 3.0       # data must determine a direction to ≤ 1/3 of t
 CONFOUND_LOADING = 0.3         # share of the weak direction (|loading|·column norm) that counts as "confounded with"
 FIX_FIRST = ("ambient_temp_C", "shoe_arm_ratio", "u6_offset_m", "u6_slope_m_per_N", "heat_transfer_W_m2K",
              "mu_drum")        # among near-equal loadings, fix the earlier one (keep the torque scale longest)
+UNIDENTIFIED = "not identifiable from these data"     # the bare drum's reason for a weak direction it fixed
 
 
 @dataclass
@@ -106,13 +107,15 @@ class DrumCalibration:
 
     def departures(self) -> tuple[str, ...]:
         """:meth:`held`, and the brake parameters held because torque and temperature logs cannot tell them from
-        another (the gap, which adds to the lining thickness in eq. (16b)): the departures of a drum from the set
-        that a second effect must not stand in for (:func:`rollaway.identify.partner.own_evidence` frees them in
+        another: the gap, which adds to the lining thickness in eq. (16b), and those the bare drum fixed as not
+        identifiable (the eq. (24) offset beside μ_d on one direction: their assumed values are a guess the data
+        could not check).  The departures of a drum from the set that a second effect must not stand in for (:func:`rollaway.identify.partner.own_evidence` frees them in
         both fits it compares).  None when the user chose the free set."""
         if self.selection.startswith("chosen by you"):
             return ()
         return self.held() + tuple(n for n, e in self.entries.items()
-                                   if e.status == "fixed" and not FREE_PARAMETERS[n].automatic)
+                                   if e.status == "fixed" and (not FREE_PARAMETERS[n].automatic
+                                                               or e.reason.startswith(UNIDENTIFIED)))
 
     def fixed_priors(self) -> dict[str, float]:
         """Assumed spreads of the brake parameters left at their assumed values (for the bands)."""
@@ -220,7 +223,7 @@ def calibrate_drum(data: Measurements, params=None, *, free=None, fix=(), start:
         if drop is None or sv[-1] >= min_singular_value:
             break
         others = f", confounded with {', '.join(confounded)}" if confounded else ""
-        fixed(drop, "fixed", f"not identifiable from these data (singular value {sv[-1]:.2g} < "
+        fixed(drop, "fixed", f"{UNIDENTIFIED} (singular value {sv[-1]:.3g} < "
                              f"{min_singular_value:g}){others}", confounded)
         candidates.remove(drop)
         vals.pop(drop, None)
@@ -275,7 +278,7 @@ def recheck(drum: DrumCalibration, data: Measurements, fit: FitResult, effects: 
         e.prior_sd = FREE_PARAMETERS[drop].spread(e.assumed_value)
         e.confounded_with = confounded
         e.reason = (f"not identifiable once {', '.join(sorted({c.split('.')[0] for c in with_effects}))} is in the "
-                    f"model (singular value {sv[-1]:.2g} < {MIN_SINGULAR_VALUE:g})"
+                    f"model (singular value {sv[-1]:.3g} < {MIN_SINGULAR_VALUE:g})"
                     + (f", confounded with {', '.join(confounded)}" if confounded else ""))
         free.remove(drop)
         vals = {k: v for k, v in fit.values.items() if k != drop}
@@ -283,12 +286,13 @@ def recheck(drum: DrumCalibration, data: Measurements, fit: FitResult, effects: 
     return fit
 
 
-def free_needed(drum: DrumCalibration, data: Measurements, effects: list, fit: FitResult) -> FitResult | None:
-    """Free again the brake parameters the bare drum held as not needed (:meth:`DrumCalibration.held`) that the
-    model with *effects* needs: all freed, then held back one at a time while BIC drops.  When the result has a
-    lower BIC than *fit*, their entries become "fitted" (so :attr:`DrumCalibration.plan` frees them) and the
-    fit is returned; else None and nothing changes."""
-    held = list(drum.held())
+def free_needed(drum: DrumCalibration, data: Measurements, effects: list, fit: FitResult,
+                names=None) -> FitResult | None:
+    """Free again the brake parameters the bare drum held as not needed (:meth:`DrumCalibration.held`; or those
+    of *names*) that the model with *effects* needs: all freed, then held back one at a time while BIC drops.
+    When the result has a lower BIC than *fit*, their entries become "fitted" (so :attr:`DrumCalibration.plan`
+    frees them) and the fit is returned; else None and nothing changes."""
+    held = [n for n in (drum.held() if names is None else names) if n not in drum.free]
     if not held or fit.jacobian is None:
         return None
     best = calibrate(data, effects, DrumPlan(drum.params, drum.free + tuple(held)), start=fit.values)

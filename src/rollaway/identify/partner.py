@@ -229,6 +229,15 @@ def own_evidence(data, params, chosen, current, struct, fits, nq, nt, steps, ev,
     return chosen[:1], first, structure(first, nq, nt), [first]
 
 
+def stood_for(steps: list[dict]) -> tuple[str, ...]:
+    """The calibratable brake parameters a dropped second effect stood in for: the departures of the drum that
+    :func:`own_evidence` freed when it found the pair no better than the first re-formed (``()`` when it did
+    not need them).  The gap is left out: it stays held, the logs cannot tell it from μ_d."""
+    from rollaway.model.drum_parameters import FREE_PARAMETERS
+    own = next((s["beyond_reform"] for s in steps[::-1] if s.get("step") == "own evidence"), {})
+    return tuple(n for n in own.get("departures") or () if FREE_PARAMETERS[n].automatic)
+
+
 def _reform_job(params, first: str, first_fit: FitResult):
     """The fit job of *first* re-formed (its hook as a linear spline of its covariate, started from *first_fit*),
     or None without a flexible form."""

@@ -233,16 +233,14 @@ def exchange(data, params, names, chosen, current, struct, nq, nt, rounds: int =
     swaps = []
     for _ in range(rounds):
         best = None
-        held, n_held = _held_plan(params, current)       # trials with the brake parameters held (cheap)
-        penalty = n_held * np.log(2 * len(data))
         per_test_ok = per_test_signature(current, nq)
         swaps_tried = [(i, new) for i in range(len(chosen)) for new in names
                        if new not in chosen and not (has_per_test(new) and not per_test_ok)]
-        fits = run_fits(data, [(calibrate, (chosen[:i] + [new] + chosen[i + 1:], held),
+        fits = run_fits(data, [(calibrate, (chosen[:i] + [new] + chosen[i + 1:], params),
                                 dict(start=current.values, statistics=False, max_iterations=SCREEN_ITERATIONS))
                                for i, new in swaps_tried])
         for (i, new), fit in zip(swaps_tried, fits):
-            if fit.bic + penalty < current.bic - 2.0 and (best is None or fit.bic < best[2].bic):
+            if fit.bic < current.bic - 2.0 and (best is None or fit.bic < best[2].bic):
                 best = (i, new, fit)
         if best is None:
             break
