@@ -17,6 +17,8 @@ from rollaway.uncertainty.heldout import loto_residuals
 from rollaway.identify.selection import (BIC_THRESHOLD, REFORM_ITERATIONS, SCREEN_ITERATIONS, SECOND_EFFECT_SE,
                                          structure)
 
+TEST_WIN = 1.0      # a test counts as better predicted when its held-out log score is higher by more than 1 [assumed]
+
 
 def beyond_reform(data, params, chosen: list[str], current: FitResult, two: FitResult, refree=(),
                   also=()) -> dict | None:
@@ -27,11 +29,13 @@ def beyond_reform(data, params, chosen: list[str], current: FitResult, two: FitR
     gives the first effect's covariate (lining temperature, …) and the start values.
 
     Returns None when the first effect has no flexible form (nothing to compare), else
-    ``{"passes", "heldout_elpd", "heldout_se", "better_tests", "channels"}``: *passes* when the held-out log
-    score of the two-effect model beats the re-formed one by more than :data:`SECOND_EFFECT_SE` standard
-    errors of the paired per-test difference (and by more than
-    :data:`rollaway.identify.ambiguity.SMALL_ELPD`), in more than half of the tests (folds; half is a coin
-    toss), by more than SMALL_ELPD also without its most favourable test (with a handful of tests one test's
+    ``{"passes", "heldout_elpd", "heldout_se", "better_tests", "worse_tests", "channels"}``: *passes* when the
+    held-out log score of the two-effect model beats the re-formed one by more than :data:`SECOND_EFFECT_SE`
+    standard errors of the paired per-test difference (and by more than
+    :data:`rollaway.identify.ambiguity.SMALL_ELPD`), in more tests (folds) than it loses — a test counts as won
+    or lost when its log score differs by more than :data:`TEST_WIN`; a tie counts for neither (two fits that
+    both predict a test to the noise say nothing about it, and "better" by 0.2 must not carry a majority) —, by
+    more than SMALL_ELPD also without its most favourable test (with a handful of tests one test's
     misfit can carry the sum and inflate the standard error the rule is measured in), and neither channel
     (drum temperature, torque) predicts worse beyond :data:`rollaway.identify.ambiguity.HELDOUT_SE` of its
     own standard errors.
@@ -118,10 +122,11 @@ def _preference(d, two: FitResult, reform: FitResult, held: list[np.ndarray]) ->
         ok &= diff.sum() > -HELDOUT_SE * se
     total = sum(-0.5 * (per["two"][ch] - per["reform"][ch]) for ch in ("temperature", "torque"))
     se = float(np.sqrt(total.size * np.var(total, ddof=1))) if total.size > 1 else np.inf
-    better = int((total > 0).sum())
-    out.update(heldout_elpd=float(total.sum()), heldout_se=se, better_tests=better, tests=int(total.size),
+    better, worse = int((total > TEST_WIN).sum()), int((total < -TEST_WIN).sum())
+    out.update(heldout_elpd=float(total.sum()), heldout_se=se, better_tests=better, worse_tests=worse,
+               tests=int(total.size),
                per_test=[float(x) for x in total],
-               passes=bool(ok and total.sum() > max(SECOND_EFFECT_SE * se, SMALL_ELPD) and 2 * better > total.size
+               passes=bool(ok and total.sum() > max(SECOND_EFFECT_SE * se, SMALL_ELPD) and better > worse
                            and total.sum() - total.max() > SMALL_ELPD))
     return out
 
