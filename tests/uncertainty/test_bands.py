@@ -292,11 +292,13 @@ def test_each_effect_set_in_the_mixture_draws_its_own_model_error():
 
 def test_where_the_verdict_leaves_structure_a_spline_of_the_other_quantity_competes(monkeypatch):
     """A sigmoid modulus drop with radiation on another drum (1-min, campaign 15 of band_questions' two-effect
-    campaigns): friction_temperature leaves structure and its shape-free form clears it, yet it is friction, not
-    modulus, and 15 % optimistic at a hot uphill start.  A spline of the lining modulus (same covariate, the other
-    quantity) predicts the held-out tests better and takes most of the mixture; the shape-free sets draw their own
-    held-out error, the catalogue forms no less than the verdict's, and the bands hold the truth.  With the friction
-    spline alone on its own error they were wholly above the truth at 450 N and 280 °C."""
+    campaigns): the catalogue forms of friction and modulus both leave structure.  A friction spline clears it, yet
+    it is friction, not modulus, and 15 % optimistic at a hot uphill start; a spline of the lining modulus (same
+    covariate, the other quantity) predicts the held-out tests better.  The modulus — the verdict since the exchange
+    step refits the brake parameters with each swap (friction was, with the modulus spline at 0.89) — keeps near half
+    the mixture in its shape-free form beside the catalogue friction; the shape-free sets draw their own held-out
+    error, the catalogue forms no less than the verdict's, and the bands hold the truth.  With the friction spline
+    alone on its own error they were wholly above the truth at 450 N and 280 °C."""
     from tests.uncertainty.band_questions import campaign as question_campaign
     import rollaway.identify.diagnose as dg
     seen, original = [], dg.diagnose
@@ -306,9 +308,11 @@ def test_where_the_verdict_leaves_structure_a_spline_of_the_other_quantity_compe
     rel = d.model.predictive["model_error_rel_sd"]
     assert d.remaining_structure or any(e["form"] != "exact" for e in d.effects)
     weights = {m.name: w for w, m in d.model.alternatives}
-    assert weights.get("paper + modulus_temperature_shape", 0.0) > 0.5, weights
+    modulus = sum(w for n, w in weights.items() if "modulus" in n) + (
+        1.0 - sum(weights.values()) if d.verdict == "modulus_temperature" else 0.0)
+    assert modulus > 0.4 and weights.get("paper + modulus_temperature_shape", 0.0) > 0.4, weights
     said = next(e for e in d.as_dict()["evidence"] if e.startswith("Parameter intervals count"))
-    assert "also in the bands: modulus_temperature_shape" in said, said        # the diagnosis says what the bands draw
+    assert "also in the bands: " in said and "modulus_temperature_shape 4" in said, said   # it says what they draw
     for _, m in d.model.alternatives:
         own = m.predictive["model_error_rel_sd"]
         assert own < rel if m.name.endswith("_shape") else own >= rel, (m.name, own, rel)
