@@ -79,8 +79,8 @@ def test_a_partner_standing_in_for_an_unidentified_eq24_offset_is_not_named():
     partner test compares, none is named, and the one-effect model frees the offset it needs (before: 3 of these
     16 seeds named a second effect; held-out campaigns 401 and 569 too).  One may still be: on seed 940 a stiffness
     law beside the modulus sits at the edge of the temperature channel's held-out check (−1.49 against a limit of
-    −1.39 or −2.2, depending on refitted folds that floating-point rounding moves), and is named in about one run of
-    four."""
+    −1.39 or −2.2, depending on refitted folds that floating-point rounding moves): named once in a full test run,
+    in none of 4 runs of this test alone."""
     partners, freed = [], 0
     for seed in range(926, 942):
         rng = np.random.default_rng(seed)
