@@ -48,31 +48,61 @@ def drum_temperature_logged_ambient_C(time_s: ArrayLike, initial_temp_C: ArrayLi
     amb = np.broadcast_to(np.asarray(ambient_C, float), t.shape)
     t0 = np.broadcast_to(np.asarray(initial_temp_C, float), t.shape)
     tau = np.broadcast_to(np.asarray(time_constant_s, float), t.shape)
-    idx = np.asarray(test_index)
     out = np.empty_like(t)
-    order = np.argsort(idx, kind="stable")          # rows grouped by test, time order kept
-    starts = np.flatnonzero(np.r_[True, idx[order][1:] != idx[order][:-1]]) if len(order) else np.zeros(0, int)
-    for lo, hi in zip(starts, np.r_[starts[1:], len(order)]):
-        rows = order[lo:hi]
-        out[rows] = _one_test(t[rows], t0[rows[0]], amb[rows], tau[rows])
+    if not t.size:
+        return out
+    order, first, cell, back = _layout(np.asarray(test_index))
+    out[order] = _tests(t[cell], t0[first], amb[cell], tau[cell])[back]
     return out
 
 
+_LAYOUTS: dict = {}           # test_index bytes → its tests × samples layout (a fit evaluates the same rows often)
+
+
+def _layout(idx: np.ndarray) -> tuple:
+    """Rows grouped by test in time order (*order*), each test's first row, the tests × samples table of row
+    numbers (a shorter test padded with its last row: inert steps) and where each of *order*'s rows sits in it."""
+    key = (idx.dtype.str, idx.tobytes())
+    got = _LAYOUTS.get(key)
+    if got is None:
+        order = np.argsort(idx, kind="stable")
+        starts = np.flatnonzero(np.r_[True, idx[order][1:] != idx[order][:-1]])
+        lengths = np.diff(np.r_[starts, len(order)])
+        group = np.repeat(np.arange(len(starts)), lengths)
+        pos = np.arange(len(order)) - np.repeat(starts, lengths)
+        last = (starts + lengths - 1)[:, None]
+        cell = order[np.minimum(starts[:, None] + np.arange(lengths.max())[None, :], last)]
+        got = (order, order[starts], cell, (group, pos))
+        if len(_LAYOUTS) > 64:
+            _LAYOUTS.clear()
+        _LAYOUTS[key] = got
+    return got
+
+
 def _one_test(t: np.ndarray, t0: float, amb: np.ndarray, tau: np.ndarray) -> np.ndarray:
-    """The recursion of :func:`drum_temperature_logged_ambient_C` over one test's samples, T_{j+1} = E_j·T_j + c_j
-    with E_j = e^{−Δ_j/τ}: in closed form T_k = e^{−S_k}·(T_0 + Σ_{j<k} c_j·e^{S_{j+1}}), S the running sum of Δ/τ
-    (cumulative sums, no loop over samples); stepped one sample at a time where e^{S} would overflow."""
-    dt = np.diff(t)
-    step = dt / tau[1:]
-    slope = np.diff(amb) / np.where(dt > 0, dt, 1.0)
-    m_tau = slope * tau[1:]
+    """The recursion of :func:`drum_temperature_logged_ambient_C` over one test's samples (:func:`_tests`)."""
+    return _tests(t[None, :], np.atleast_1d(t0), amb[None, :], tau[None, :])[0]
+
+
+def _tests(t: np.ndarray, t0: np.ndarray, amb: np.ndarray, tau: np.ndarray) -> np.ndarray:
+    """The recursion of :func:`drum_temperature_logged_ambient_C` over tests × samples (one row per test, padded
+    rows repeat their last sample), T_{j+1} = E_j·T_j + c_j with E_j = e^{−Δ_j/τ}: in closed form
+    T_k = e^{−S_k}·(T_0 + Σ_{j<k} c_j·e^{S_{j+1}}), S the running sum of Δ/τ (cumulative sums along each row, no
+    loop over samples); stepped one sample at a time in a row where e^{S} would overflow."""
+    dt = np.diff(t, axis=1)
+    step = dt / tau[:, 1:]
+    slope = np.diff(amb, axis=1) / np.where(dt > 0, dt, 1.0)
+    m_tau = slope * tau[:, 1:]
     decay = np.exp(-step)
-    c = amb[1:] - m_tau - (amb[:-1] - m_tau) * decay
-    s = np.cumsum(step)
-    if s.size and s[-1] > 600.0:                    # e^{S} beyond ~1e260: one sample after another
-        out = np.empty_like(t)
-        out[0] = t0
-        for j in range(len(dt)):
-            out[j + 1] = decay[j] * out[j] + c[j]
-        return out
-    return np.r_[t0, np.exp(-s) * (t0 + np.cumsum(c * np.exp(s)))]
+    c = amb[:, 1:] - m_tau - (amb[:, :-1] - m_tau) * decay
+    s = np.cumsum(step, axis=1)
+    out = np.empty_like(t)
+    out[:, 0] = t0
+    if s.shape[1]:
+        big = s[:, -1] > 600.0                       # e^{S} beyond ~1e260: one sample after another
+        with np.errstate(over="ignore", invalid="ignore"):
+            out[:, 1:] = np.exp(-s) * (t0[:, None] + np.cumsum(c * np.exp(s), axis=1))
+        for r in np.flatnonzero(big):
+            for j in range(dt.shape[1]):
+                out[r, j + 1] = decay[r, j] * out[r, j] + c[r, j]
+    return out
