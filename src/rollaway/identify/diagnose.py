@@ -38,7 +38,7 @@ from rollaway.bench.measurements import Measurements
 from rollaway.bench.noise import Noise, noise_estimate, sample_sigma
 from rollaway.identify.detection import detection_limits, hidden_shifts, hidden_words, limits_words
 from rollaway.identify.diagnose_words import describe_residual, no_candidate_words, noise_words, structure_words
-from rollaway.identify.partner import own_evidence, stood_for
+from rollaway.identify.partner import beside_partial, own_evidence, stood_for
 from rollaway.identify.predictive_set import attach_predictive, interval_words
 from rollaway.identify.shape import candidate_shapes, channel_alternatives, other_form_rivals, shape_rivals
 from rollaway.identify.selection import (BIC_THRESHOLD, SCREEN_ITERATIONS, Candidate, cv_score, eliminate, exchange,
@@ -214,6 +214,19 @@ def diagnose(data: Measurements, params=None, effects=None, *, noise_torque_Nm: 
                       f"the shape shown (write it as a plugin)."
                       + (f"  {', '.join(dropped)} only absorbed part of this form mismatch and is not kept."
                          if dropped else ""))
+            other = (beside_partial(data, params, name, refined, names, nq, nt, drum.departures())
+                     if len(chosen) == 1 and max_effects > 1 else None)
+            if other is not None:                   # a second effect beside the partial one, on its own evidence
+                second, refined, dbic, pref = other
+                selected.append({"effect": second, "form": "exact"})
+                struct = structure(refined, nq, nt)
+                steps.append({"step": "beside the partial first", "effect": second, "delta_bic": dbic,
+                              "heldout": pref})
+                ev.append(f"Beside {name} re-formed, {second} lowers BIC by {-dbic:.1f} and predicts held-out "
+                          f"tests better (log score {pref['heldout_elpd']:+.1f} ± {pref['heldout_se']:.1f}, "
+                          f"better in {pref['better_tests']} of {pref['tests']} tests, worse in "
+                          f"{pref['worse_tests']}), also with the drum's departures freed: {second} is named beside "
+                          f"it.")
     refined = recheck(drum, data, refined, [e["effect"] for e in selected]) if selected else refined
     misfit = ("unexplained" if remaining and not any(e["form"] == "partial" for e in selected) else
               "partial" if remaining or any(e["form"] != "exact" for e in selected) else False)

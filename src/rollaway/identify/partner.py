@@ -253,7 +253,32 @@ def _reform_job(params, first: str, first_fit: FitResult):
     return None if flex is None else ([flex], params, dict(start=first_fit.values, max_iterations=REFORM_ITERATIONS))
 
 
-def beside_reformed(data, params, first: str, first_fit: FitResult, names, nq: Noise, nt: Noise, reform=None):
+def beside_partial(data, params, first: str, first_fit: FitResult, names, nq: Noise, nt: Noise, departures=()):
+    """A second effect beside a first whose shape-free form clears the structure (a verdict of form "partial"):
+    :func:`beside_reformed` without its need for structure — the structure tests miss at p < 0.001 what BIC and the
+    held-out tests still show (a radiating drum's temperature law beside a creep the catalogue writes wrongly) — and,
+    where it finds one, asked again with the drum's *departures* freed in both fits it compares
+    (:meth:`rollaway.identify.drum.DrumCalibration.departures`: a radial contraction can stand in for a thicker
+    lining beside a spline).  Returns :func:`beside_reformed`'s answer or None."""
+    from rollaway.identify.model import DrumPlan
+    found = beside_reformed(data, params, first, first_fit, names, nq, nt, structured_only=False)
+    wider = tuple(n for n in departures if n not in getattr(params, "free", ()))
+    if found is None or not wider:
+        return found
+    name, pair = found[0], found[1]
+    job = _reform_job(params, first, first_fit)
+    plan = DrumPlan(params.params, tuple(params.free) + wider)
+    reform, both = fit_all(data, [([job[0][0]], plan, dict(start=first_fit.values, max_iterations=REFORM_ITERATIONS)),
+                                  ([job[0][0], name], plan, dict(start=pair.values, max_iterations=REFORM_ITERATIONS))])
+    if reform.jacobian is None or both.jacobian is None:
+        return found
+    if both.bic - reform.bic >= BIC_THRESHOLD or not _heldout_preference(data, both, reform)["passes"]:
+        return None
+    return found
+
+
+def beside_reformed(data, params, first: str, first_fit: FitResult, names, nq: Noise, nt: Noise, reform=None,
+                    structured_only: bool = True):
     """A second effect on the evidence it has beside the first effect *first* re-formed (its hook as a linear
     spline, :func:`rollaway.identify.shape.flexible_effect`), for when the first's catalogue form is wrong: then
     the pair keeps the first's misfit and the first re-formed absorbs part of the second, and a forward step on
@@ -262,6 +287,7 @@ def beside_reformed(data, params, first: str, first_fit: FitResult, names, nq: N
     the re-formed first put it: its effect parameters and the brake parameters fitted); the best by BIC
     is refitted with everything free and must lower BIC below :data:`BIC_THRESHOLD` and predict held-out tests better by
     :func:`beyond_reform`'s rule.  *reform*: that re-formed first, when already fitted (:func:`_reform_job`).
+    *structured_only* false: sought also where the re-formed first leaves no structure (:func:`beside_partial`).
     Returns (name, the catalogue pair's fit, ΔBIC, held-out comparison) or None."""
     from rollaway.effects import get_effect
     job = _reform_job(params, first, first_fit)
@@ -270,7 +296,7 @@ def beside_reformed(data, params, first: str, first_fit: FitResult, names, nq: N
     flex = job[0][0]
     if reform is None:
         reform = calibrate(data, *job[:2], **job[2])
-    if reform.jacobian is None or not structure(reform, nq, nt)["structured"]:
+    if reform.jacobian is None or (structured_only and not structure(reform, nq, nt)["structured"]):
         return None
     others = [c for c in names if c != first and not get_effect(c).per_test_parameters()]
     jobs = [([flex, c], params, dict(start=reform.values, free=_all_but(params, flex, c), statistics=False,
