@@ -77,14 +77,16 @@ def refit_loto_residuals(fits: list) -> tuple[list[np.ndarray], list[int]]:
     """For each fit of *fits* (all on the same data): its leave-one-test-out standardised residuals
     [temperature | torque] (:func:`rollaway.uncertainty.heldout.loto_residuals`) with every fold whose linear step
     fails :func:`linear_holds` refitted — all those refits side by side on the machine's cores — and how many folds
-    were refitted.  A fold that leaves fewer residuals than free globals, or that the solver cannot refit, keeps
-    its linear step; a fit without free globals or Jacobian keeps its own residuals."""
+    were refitted (kept on the fit: a fit compared twice is refitted once).  A fold that leaves fewer residuals than
+    free globals, or that the solver cannot refit, keeps its linear step; a fit without free globals or Jacobian keeps
+    its own residuals."""
     from rollaway.identify.workers import run_fits
     data = fits[0].data
-    out = [loto_residuals(f) for f in fits]
+    known = [getattr(f, "_refit_heldout", None) for f in fits]     # a fit compared twice is refitted once
+    out = [loto_residuals(f) if got is None else got[0].copy() for f, got in zip(fits, known)]
     calls, owner = [], []
     for k, fit in enumerate(fits):
-        if fit.jacobian is None or not fit.names:
+        if fit.jacobian is None or not fit.names or known[k] is not None:
             continue
         for held in folds(data.n_tests):
             left = int(np.count_nonzero(~np.isin(data.test_index, held)))
@@ -95,7 +97,11 @@ def refit_loto_residuals(fits: list) -> tuple[list[np.ndarray], list[int]]:
     for k, fold in zip(owner, done):
         if fold.residual is not None:
             out[k][fold.rows] = fold.residual
-    return out, [sum(f.residual is not None for o, f in zip(owner, done) if o == k) for k in range(len(fits))]
-
+    counts = [known[k][1] if known[k] is not None else
+              sum(f.residual is not None for o, f in zip(owner, done) if o == k) for k in range(len(fits))]
+    for k, fit in enumerate(fits):
+        if known[k] is None:
+            fit._refit_heldout = (out[k].copy(), counts[k])
+    return out, counts
 
 __all__ = ["FOLD_ITERATIONS", "HELD_TOLERANCE", "linear_holds", "refit_loto_residuals"]
