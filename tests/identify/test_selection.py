@@ -41,12 +41,13 @@ def test_clean_drums_with_h_held_name_nothing():
     assert held >= 4
 
 
-def test_own_channel_plan_frees_only_the_changed_channels_held_parameters():
+def test_own_channel_plan_frees_only_the_held_parameters_of_the_law_the_effect_changes():
     from rollaway.model.parameters import paper
     plan = DrumPlan(paper(), ("mu_drum",))
     held = ("heat_transfer_W_m2K", "u6_offset_m")
     assert own_channel_plan(plan, "radiation_cooling", held).free == ("mu_drum", "heat_transfer_W_m2K")
-    assert own_channel_plan(plan, "lining_creep", held) is plan          # a torque effect: nothing freed
+    assert own_channel_plan(plan, "cable_relaxation", held).free == ("mu_drum", "u6_offset_m")   # eq. (24)'s output
+    assert own_channel_plan(plan, "lining_creep", held) is plan          # a clamp-force effect: nothing freed
     assert own_channel_plan(plan, "radiation_cooling", ()) is plan
 
 

@@ -127,9 +127,9 @@ def diagnose(data: Measurements, params=None, effects=None, *, noise_torque_Nm: 
         current = best.fit
         freed = [n for n in current.model.free if n not in params.free]
         if freed:                                            # fitted with its channel's held brake parameters free
-            drum.refree(current, f"freed to compare {best.effect}, which changes the law of their channel")
+            drum.refree(current, f"freed to compare {best.effect}, which changes the law they set")
             params = drum.plan
-            ev.append(f"{best.effect} changes the law of a measured channel: it was compared with "
+            ev.append(f"{best.effect} changes a law the bare drum held: it was compared with "
                       f"{', '.join(freed)} free (the bare drum held {'them' if len(freed) > 1 else 'it'} as not "
                       f"needed), the penalty for {'them' if len(freed) > 1 else 'it'} counted in its BIC.")
         refit = free_needed(drum, data, chosen, current)     # the bare drum held them under a model without

@@ -197,17 +197,21 @@ def forward_step(data, params, names, current: FitResult, chosen: list[str], ste
 
 
 def own_channel_plan(params, name: str, held_brake=()):
-    """*params* with the brake parameters of *held_brake* (held as not needed by the bare drum) that belong to the
-    measured channel whose own law the effect *name* changes freed: an effect that changes the cooling law
-    (radiation) is compared with h and T_amb free, since with the convective h held at a value the bare drum
-    agreed with, no added cooling can fit (the convection it must give back is held).  *params* itself when
-    there are none."""
+    """*params* with the brake parameters of *held_brake* (held as not needed by the bare drum) whose law the effect
+    *name* changes freed (:attr:`rollaway.model.drum_parameters.FreeParameter.law`: the hook whose input that law
+    sets).  The bare drum held them under a model without the effect: an effect that changes the cooling law
+    (radiation) is compared with h and T_amb free, since with the convective h held at a value the bare drum agreed
+    with, no added cooling can fit (the convection it must give back is held); one that changes the lining
+    displacement (a cable that loses a displacement, not a fraction) with eq. (24)'s slope and offset free, since
+    the share of the torque such a loss takes at each hand force is set by them.  *params* itself when there are
+    none."""
     from rollaway.effects import get_effect
     from rollaway.identify.model import DrumPlan
     from rollaway.model.drum_parameters import FREE_PARAMETERS
-    if not held_brake or not isinstance(params, DrumPlan) or not get_effect(name).touches_temperature():
+    if not held_brake or not isinstance(params, DrumPlan):
         return params
-    add = tuple(n for n in held_brake if FREE_PARAMETERS[n].channel == "temperature" and n not in params.free)
+    hooks = set(get_effect(name).overridden_hooks())
+    add = tuple(n for n in held_brake if FREE_PARAMETERS[n].law in hooks and n not in params.free)
     return DrumPlan(params.params, params.free + add) if add else params
 
 

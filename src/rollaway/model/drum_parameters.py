@@ -68,6 +68,8 @@ class FreeParameter:
     automatic: bool = True     # the drum calibration may free it by itself (False: held unless --free names it)
     effect: str | None = None  # a catalogue effect that, when fitted, takes its place (its prior is dropped)
     drawn: bool = True         # held, its doubt is drawn in the bands (False: in the parameter intervals only)
+    law: str | None = None     # the effect hook whose input its law sets (an effect replacing that law is compared
+                               # with it free where the bare drum held it: identify.selection.own_channel_plan)
 
     def spread(self, value: float) -> float:
         return self.prior_sd * abs(value) if self.relative_sd else self.prior_sd
@@ -80,17 +82,18 @@ FREE_PARAMETERS: dict[str, FreeParameter] = {p.name: p for p in (
                    "lining_thickness_m", "drum_thickness_m", "gap_m")),
     FreeParameter("u6_slope_m_per_N", "a", "m/N", 2e-8, 4e-6, 0.3, True, "torque",
                   "eq. (24) slope: hand-force term against thermal term",
-                  ("lining_area_m2·lining_modulus_Pa", "lining_thickness_m")),
+                  ("lining_area_m2·lining_modulus_Pa", "lining_thickness_m"), law="displacement"),
     FreeParameter("u6_offset_m", "b", "m", -2e-4, 1e-4, 1.5e-5, False, "torque",
-                  "eq. (24) offset: the hand force below which the lining does not bear"),
+                  "eq. (24) offset: the hand force below which the lining does not bear", law="displacement"),
     FreeParameter("shoe_arm_ratio", "l_fr/l_f", "–", 0.1, 2.0, 0.25, True, "torque",
                   "self-energising geometry (eqs. 18–21): the downhill/uphill torque ratio",
                   ("shoe_arm_friction_m", "shoe_arm_normal_m")),
     FreeParameter("heat_transfer_W_m2K", "h", "W/(m² K)", 1.0, 400.0, 0.5, True, "temperature",
                   "cooling time constant τ (eq. 10)",
-                  ("drum_density_kg_m3·drum_specific_heat_J_kgK·drum_volume_m3", "cooled_area_m2")),
+                  ("drum_density_kg_m3·drum_specific_heat_J_kgK·drum_volume_m3", "cooled_area_m2"),
+                  law="drum_temperature"),
     FreeParameter("ambient_temp_C", "T_amb", "°C", -40.0, 60.0, 8.0, False, "temperature",
-                  "ambient air of the bench (eq. 10)"),
+                  "ambient air of the bench (eq. 10)", law="drum_temperature"),
     FreeParameter("gap_m", "l_g", "m", 0.0, 3e-3, 6e-4, False, "torque",
                   "installation gap lining/drum (eq. 16b): Table 1 lists 1 mm, the set assumes 0",
                   ("mu_drum",), automatic=False, effect="installation_gap", drawn=False),
