@@ -150,9 +150,9 @@ def forward_step(data, params, names, current: FitResult, chosen: list[str], ste
     with per-test parameters are tried only when *per_test_ok* (:func:`per_test_signature`).
     *screen*: fit the candidates with the brake parameters held, then refit the best few jointly
     (faster, but an effect the calibrated drum has partly absorbed can be missed).  *held_brake*: brake
-    parameters the drum calibration held as not needed; a candidate that changes a measured channel's own law
-    (the cooling law: :meth:`Effect.touches_temperature`) is fitted with that channel's held ones free
-    (:func:`own_channel_plan`)."""
+    parameters the drum calibration held as not needed; a candidate that changes the law of some of them (the
+    cooling law, eq. (24)'s displacement) is fitted with those free (:func:`own_channel_plan`) and with them held,
+    and ranked by the better of the two."""
     start = {k: v for k, v in current.values.items()}
     held, n_held = _held_plan(params, current) if screen else (params, 0)
     tried, calls, plans = [], [], []
@@ -160,24 +160,28 @@ def forward_step(data, params, names, current: FitResult, chosen: list[str], ste
         if name in chosen or (not per_test_ok and has_per_test(name)):
             continue
         own = own_channel_plan(params, name, held_brake)
-        if has_per_test(name) and held is params:      # per-test fits are the costly ones: screen them
-            h, k = _held_plan(own, current)
-            calls.append((_per_test_screen, (chosen + [name], h, own), dict(start=start)))
-        elif held is params:                            # a short joint fit ranks; the best few are finished below
-            h, k = own, 0
-            calls.append((calibrate, (chosen + [name], own), dict(start=start, max_iterations=SCREEN_ITERATIONS)))
-        else:
-            h, k = held, n_held
-            calls.append((calibrate, (chosen + [name], held), dict(start=start)))     # brake parameters held
-        tried.append(name)
-        plans.append((h, k))
-    cands = [Candidate(name, fit, fit.bic + k * np.log(2 * len(data)) * (h is not params) - current.bic,
+        for plan in ((own,) if own is params else (own, params)):     # a law the bare drum held: freed, and held
+            if has_per_test(name) and held is params:      # per-test fits are the costly ones: screen them
+                h, k = _held_plan(plan, current)
+                calls.append((_per_test_screen, (chosen + [name], h, plan), dict(start=start)))
+            elif held is params:                            # a short joint fit ranks; the best few are finished below
+                h, k = plan, 0
+                calls.append((calibrate, (chosen + [name], plan), dict(start=start, max_iterations=SCREEN_ITERATIONS)))
+            else:
+                h, k = held, n_held
+                calls.append((calibrate, (chosen + [name], held), dict(start=start)))     # brake parameters held
+            tried.append(name)
+            plans.append((h, k, plan))
+    every = [Candidate(name, fit, fit.bic + k * np.log(2 * len(data)) * (h is not params) - current.bic,
                        fit.aic + 2 * k * (h is not params) - current.aic, step=step)
-             for name, (h, k), fit in zip(tried, plans, run_fits(data, calls))]
-    cands.sort(key=lambda c: c.delta_bic)
+             for name, (h, k, _), fit in zip(tried, plans, run_fits(data, calls))]
+    plan_of, cands = {}, []
+    for c, (_, _, plan) in sorted(zip(every, plans), key=lambda t: t[0].delta_bic):
+        if c.effect not in plan_of:                     # each effect by its better plan
+            plan_of[c.effect] = plan
+            cands.append(c)
     top = [c for c in cands[:REFIT_TOP] if held is not params or not has_per_test(c.effect)]
-    for c, fit in zip(top, run_fits(data, [(calibrate, (chosen + [c.effect], own_channel_plan(params, c.effect,
-                                                                                                held_brake)),
+    for c, fit in zip(top, run_fits(data, [(calibrate, (chosen + [c.effect], plan_of[c.effect]),
                                             dict(start=c.fit.values)) for c in top])):
         c.fit = fit                                             # the best few refitted with the brake parameters free
         c.delta_bic, c.delta_aic = c.fit.bic - current.bic, c.fit.aic - current.aic
@@ -189,7 +193,7 @@ def forward_step(data, params, names, current: FitResult, chosen: list[str], ste
         cur_scores = cv_score(data, chosen, params, current)
         cur_cv = float(cur_scores.sum())
         for c in strong:
-            s = cv_score(data, chosen + [c.effect], own_channel_plan(params, c.effect, held_brake), c.fit)
+            s = cv_score(data, chosen + [c.effect], plan_of[c.effect], c.fit)
             c.cv_score = float(s.sum())
             c.cv_better_tests = int((s < cur_scores).sum())
     passing = [c for c in strong if c.cv_score is not None and c.cv_score < cur_cv]
