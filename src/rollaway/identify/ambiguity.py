@@ -86,11 +86,12 @@ def rivals(best, candidates: list, threshold: float, inflation: float = 1.0) -> 
     if best.fit.jacobian is None:
         return out
     for c in candidates:
-        if c is best or c.delta_bic >= threshold or c.cv_score is None or c.fit.jacobian is None:
-            continue
+        weak = c.delta_bic >= threshold           # short of the selection's threshold: a rival only where the
+        if c is best or c.delta_bic >= WEAK_BIC or (c.cv_score is None and not weak) or c.fit.jacobian is None:
+            continue                              # held-out prediction prefers it
         dbic = (c.delta_bic - best.delta_bic) / max(inflation, 1.0)
         elpd, se = heldout_difference(best.fit, c.fit)
-        if dbic < INDISTINGUISHABLE_BIC and elpd > -preference_margin(best.fit, se):
+        if not weak and dbic < INDISTINGUISHABLE_BIC and elpd > -preference_margin(best.fit, se):
             why = (f"BIC within {INDISTINGUISHABLE_BIC:g} ({dbic:+.1f}) and the held-out prediction does not prefer "
                    f"either (Δ log score {elpd:+.1f} ± {se:.1f})")
         elif elpd > 0:

@@ -25,8 +25,8 @@ from __future__ import annotations
 import numpy as np
 
 from rollaway.effects import available_effects, get_effect
-from rollaway.identify.ambiguity import (MAX_RIVALS, alternative_words, closest, rivals, set_rivals, tell_apart,
-                                        weak_alternatives)
+from rollaway.identify.ambiguity import (MAX_RIVALS, WEAK_BIC, alternative_words, closest, rivals, set_rivals,
+                                        tell_apart, weak_alternatives)
 from rollaway.identify.calibrate import FitResult, calibrate, evaluate
 from rollaway.identify.coarse import MAX_WINDOW_S, coarsen
 from rollaway.identify.drum import calibrate_drum, free_needed, predictive_covariance, recheck
@@ -297,7 +297,7 @@ def _rivals(selected: list[dict], first: list[Candidate], base_cv, tested: dict,
     best = next((c for c in first if c.effect == selected[0]["effect"]), None)
     if best is None:
         return []
-    out = rivals(best, [c for c in first if c.cv_score is not None], BIC_THRESHOLD,
+    out = rivals(best, [c for c in first if c.cv_score is not None or c.delta_bic < WEAK_BIC], BIC_THRESHOLD,
                  max(ess_inflation(best.fit).values()))
     for a in out:
         a["tell_apart"] = tell_apart(best.fit, a["fit"], tested, nq.sigma)
@@ -305,13 +305,14 @@ def _rivals(selected: list[dict], first: list[Candidate], base_cv, tested: dict,
 
 
 def _same_drum(data, params, base: FitResult, first: list[Candidate]) -> list[Candidate]:
-    """The step-1 candidates that passed the held-out test, refitted with the brake parameters *params* frees
-    when a later step freed more than the bare drum (*base*) did: a verdict and its rivals compared with one drum."""
+    """The step-1 candidates that passed the held-out test or lowered BIC by more than :data:`WEAK_BIC`, refitted
+    with the brake parameters *params* frees when a later step freed more than the bare drum (*base*) did: a verdict
+    and its rivals compared with one drum."""
     if tuple(params.free) == tuple(base.model.free):
         return first
     out = []
     for c in first:
-        if c.cv_score is None:
+        if c.cv_score is None and c.delta_bic >= WEAK_BIC:
             continue
         fit = calibrate(data, [c.effect], params, start=c.fit.values)
         if fit.jacobian is not None:
