@@ -56,6 +56,21 @@ def test_rivals_need_close_evidence_or_a_disagreeing_heldout_test():
     assert "disagrees" in out[1]["why"] and out[0]["delta_bic"] == pytest.approx(INDISTINGUISHABLE_BIC / 2)
 
 
+def test_a_candidate_short_of_the_threshold_is_a_rival_only_where_the_heldout_tests_prefer_it():
+    """Below WEAK_BIC (strong evidence against the drum alone) but short of the selection's threshold: a rival where
+    the held-out prediction prefers it to the verdict, never for a close BIC alone; above WEAK_BIC, never."""
+    from rollaway.identify.ambiguity import WEAK_BIC
+    rng = np.random.default_rng(3)
+    r = rng.standard_normal(80)
+    best = _cand("lining_creep", -14.0, r)
+    preferred = _cand("friction_temperature", WEAK_BIC - 0.2, 0.6 * r, cv=None)   # BIC 7.8 worse, predicts better
+    close_only = _cand("modulus_temperature", -9.0, 1.6 * r, cv=None)             # BIC 5 worse, predicts worse
+    faint = _cand("cable_relaxation", WEAK_BIC + 1.5, 0.5 * r, cv=None)          # evidence too weak to be a rival
+    out = rivals(best, [best, preferred, close_only, faint], -10.0)
+    assert [o["effects"][0] for o in out] == ["friction_temperature"]
+    assert "disagrees" in out[0]["why"]
+
+
 def test_verdict_line_names_every_alternative_and_the_test():
     alts = [{"effects": ["modulus_temperature"], "tell_apart": {"words": "a test facing uphill at 450 N would"}}]
     line = verdict_line("friction_temperature", alts)
