@@ -18,6 +18,7 @@ from rollaway.identify.selection import (BIC_THRESHOLD, REFORM_ITERATIONS, SCREE
                                          structure)
 
 TEST_WIN = 1.0      # a test counts as better predicted when its held-out log score is higher by more than 1 [assumed]
+SECOND_TERM_STARTS = (0.2, 5.0)   # a second term's time constants start at these multiples of the first's [assumed]
 
 
 def beyond_reform(data, params, chosen: list[str], current: FitResult, two: FitResult, refree=(),
@@ -77,6 +78,38 @@ def beyond_reform(data, params, chosen: list[str], current: FitResult, two: FitR
     out = _heldout_preference(data, two, reform)
     out.update(reform_effect=flex.name, delta_bic_refreed=delta_bic, also=done[len(jobs) + 1:])
     out["passes"] = bool(out["passes"] and (delta_bic is None or delta_bic < BIC_THRESHOLD))
+    return out
+
+
+def beyond_second_term(data, params, first: str, pair: FitResult) -> dict | None:
+    """Does *pair* (*first* beside a second catalogue effect) say more than *first* with a second term of its own
+    law (:func:`rollaway.effects.second_term.second_term`: one more amplitude and time constant)?  A lining creep
+    beside a cable relaxation can write a creep that follows a power law of time: two exponentials of any kind
+    approximate it, and a spline of time on a handful of tests predicts them worse than the two (each segment's
+    slope trades with the cooling the drum parameters also fit).  The second term is started with its time
+    constants at :data:`SECOND_TERM_STARTS` times the first's, the better fit by BIC kept.  None where *first* has
+    no second term; else :func:`_heldout_preference` of *pair* against it, ``"passes"`` also requiring the lower
+    BIC (``"delta_bic"``: *pair*'s less the second term's; ``"term"``: its name)."""
+    from rollaway.effects import get_effect
+    from rollaway.effects.second_term import has_second_term, second_term
+    eff = get_effect(first)
+    if not has_second_term(eff) or pair.jacobian is None:
+        return None
+    two = second_term(eff)
+    jobs = []
+    for m in SECOND_TERM_STARTS:
+        start = dict(pair.values)
+        for p in eff.parameters:
+            v = float(pair.values.get(f"{first}.{p.name}", p.initial))
+            start[f"{two.name}.{p.name}"] = min(max(v * m, p.lower), p.upper) if p.unit == "s" else p.initial
+        jobs.append(([first, two], params, dict(start=start)))
+    fits = [f for f in fit_all(data, jobs) if f.jacobian is not None]
+    if not fits:
+        return None
+    term = min(fits, key=lambda f: f.bic)
+    out = _heldout_preference(data, pair, term)
+    out.update(term=two.name, delta_bic=float(pair.bic - term.bic))
+    out["passes"] = bool(out["passes"] and out["delta_bic"] < 0.0)
     return out
 
 
@@ -200,6 +233,9 @@ def own_evidence(data, params, chosen, current, struct, fits, nq, nt, steps, ev,
         if wider is not None and not wider["passes"]:
             wider.pop("also", None)
             own, refree = dict(wider, departures=list(departures)), refree + departures
+    term = beyond_second_term(data, params, chosen[0], current) if own["passes"] else None
+    if term is not None and not term["passes"]:
+        own = dict(own, passes=False, second_term=term)
     steps.append({"step": "own evidence", "effect": chosen[1], "kept": own["passes"], "beyond_reform": own})
     if own["passes"]:
         back = beyond_reform(data, params, chosen[1:], current, current, refree)
@@ -225,6 +261,14 @@ def own_evidence(data, params, chosen, current, struct, fits, nq, nt, steps, ev,
                   f"{pref['tests']} tests{_refit_words(pref)}): a mis-formed {chosen[0]} hid it; {name} is named on "
                   f"that evidence.")
         return [chosen[0], name], pair, structure(pair, nq, nt), [first, pair]
+    if "second_term" in own:
+        t = own["second_term"]
+        ev.append(f"{chosen[1]} predicts held-out tests better beside {chosen[0]} than {chosen[0]} re-formed, but not "
+                  f"better than {chosen[0]} with a second term of its own law ({t['term']}: BIC {t['delta_bic']:+.1f} "
+                  f"for the pair against it, held-out log score {t['heldout_elpd']:+.1f} ± {t['heldout_se']:.1f}, better "
+                  f"in {t['better_tests']} of {t['tests']} tests) — it only writes {chosen[0]}'s law with one time "
+                  f"constant more; not named.")
+        return chosen[:1], first, structure(first, nq, nt), [first]
     ev.append(f"{chosen[1]} lowers BIC and predicts held-out tests better beside {chosen[0]}, but not beyond "
               f"{chosen[0]} re-formed (its hook as a linear spline, no second effect"
               + (f"; {', '.join(refree)} freed in both" if refree else "") + "): held-out log score "
@@ -313,6 +357,9 @@ def beside_reformed(data, params, first: str, first_fit: FitResult, names, nq: N
     if not pref["passes"] or not _beyond_own_reform(data, params, name, both):
         return None
     pair = calibrate(data, [first, name], params, start=both.values)
+    term = beyond_second_term(data, params, first, pair)
+    if term is not None and not term["passes"]:
+        return None
     return name, pair, float(both.bic - reform.bic), pref
 
 
