@@ -81,15 +81,16 @@ def beyond_reform(data, params, chosen: list[str], current: FitResult, two: FitR
     return out
 
 
-def beyond_second_term(data, params, first: str, pair: FitResult) -> dict | None:
-    """Does *pair* (*first* beside a second catalogue effect) say more than *first* with a second term of its own
-    law (:func:`rollaway.effects.second_term.second_term`: one more amplitude and time constant)?  A lining creep
-    beside a cable relaxation can write a creep that follows a power law of time: two exponentials of any kind
+def beyond_second_term(data, params, first: str, second: str, pair: FitResult) -> dict | None:
+    """Does *second* still add beside *first* written with a second term of its own law
+    (:func:`rollaway.effects.second_term.second_term`: one more amplitude and time constant)?  A cable relaxation
+    beside a lining creep can write a creep that follows a power law of time: two exponentials of any kind
     approximate it, and a spline of time on a handful of tests predicts them worse than the two (each segment's
-    slope trades with the cooling the drum parameters also fit).  The second term is started with its time
-    constants at :data:`SECOND_TERM_STARTS` times the first's, the better fit by BIC kept.  None where *first* has
-    no second term; else :func:`_heldout_preference` of *pair* against it, ``"passes"`` also requiring the lower
-    BIC (``"delta_bic"``: *pair*'s less the second term's; ``"term"``: its name)."""
+    slope trades with the cooling the drum parameters also fit).  *first* with its second term (started with the
+    time constants at :data:`SECOND_TERM_STARTS` times the first's in *pair*, the better fit by BIC kept) is fitted
+    alone and beside *second*; the three must lower BIC below :data:`BIC_THRESHOLD` against the two and predict
+    held-out tests better (:func:`_heldout_preference`, ``"passes"``; ``"delta_bic"``; ``"term"``: its name).  None
+    where *first* has no second term or a fit fails."""
     from rollaway.effects import get_effect
     from rollaway.effects.second_term import has_second_term, second_term
     eff = get_effect(first)
@@ -107,9 +108,12 @@ def beyond_second_term(data, params, first: str, pair: FitResult) -> dict | None
     if not fits:
         return None
     term = min(fits, key=lambda f: f.bic)
-    out = _heldout_preference(data, pair, term)
-    out.update(term=two.name, delta_bic=float(pair.bic - term.bic))
-    out["passes"] = bool(out["passes"] and out["delta_bic"] < 0.0)
+    three = calibrate(data, [first, two, second], params, start={**pair.values, **term.values})
+    if three.jacobian is None:
+        return None
+    out = _heldout_preference(data, three, term)
+    out.update(term=two.name, delta_bic=float(three.bic - term.bic))
+    out["passes"] = bool(out["passes"] and out["delta_bic"] < BIC_THRESHOLD)
     return out
 
 
@@ -233,7 +237,7 @@ def own_evidence(data, params, chosen, current, struct, fits, nq, nt, steps, ev,
         if wider is not None and not wider["passes"]:
             wider.pop("also", None)
             own, refree = dict(wider, departures=list(departures)), refree + departures
-    term = beyond_second_term(data, params, chosen[0], current) if own["passes"] else None
+    term = beyond_second_term(data, params, chosen[0], chosen[1], current) if own["passes"] else None
     if term is not None and not term["passes"]:
         own = dict(own, passes=False, second_term=term)
     steps.append({"step": "own evidence", "effect": chosen[1], "kept": own["passes"], "beyond_reform": own})
@@ -263,10 +267,10 @@ def own_evidence(data, params, chosen, current, struct, fits, nq, nt, steps, ev,
         return [chosen[0], name], pair, structure(pair, nq, nt), [first, pair]
     if "second_term" in own:
         t = own["second_term"]
-        ev.append(f"{chosen[1]} predicts held-out tests better beside {chosen[0]} than {chosen[0]} re-formed, but not "
-                  f"better than {chosen[0]} with a second term of its own law ({t['term']}: BIC {t['delta_bic']:+.1f} "
-                  f"for the pair against it, held-out log score {t['heldout_elpd']:+.1f} ± {t['heldout_se']:.1f}, better "
-                  f"in {t['better_tests']} of {t['tests']} tests) — it only writes {chosen[0]}'s law with one time "
+        ev.append(f"{chosen[1]} predicts held-out tests better beside {chosen[0]} than {chosen[0]} re-formed, but adds "
+                  f"too little beside {chosen[0]} with a second term of its own law ({t['term']}: BIC "
+                  f"{t['delta_bic']:+.1f}, held-out log score {t['heldout_elpd']:+.1f} ± {t['heldout_se']:.1f}, better "
+                  f"in {t['better_tests']} of {t['tests']} tests) — it only wrote {chosen[0]}'s law with one time "
                   f"constant more; not named.")
         return chosen[:1], first, structure(first, nq, nt), [first]
     ev.append(f"{chosen[1]} lowers BIC and predicts held-out tests better beside {chosen[0]}, but not beyond "
@@ -357,7 +361,7 @@ def beside_reformed(data, params, first: str, first_fit: FitResult, names, nq: N
     if not pref["passes"] or not _beyond_own_reform(data, params, name, both):
         return None
     pair = calibrate(data, [first, name], params, start=both.values)
-    term = beyond_second_term(data, params, first, pair)
+    term = beyond_second_term(data, params, first, name, pair)
     if term is not None and not term["passes"]:
         return None
     return name, pair, float(both.bic - reform.bic), pref
