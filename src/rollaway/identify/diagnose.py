@@ -150,7 +150,7 @@ def diagnose(data: Measurements, params=None, effects=None, *, noise_torque_Nm: 
                       + " — an effect picked early had absorbed part of a later one's signature.")
     partner = None                  # a second effect dropped for want of its own evidence, that cleared the residual
     if len(chosen) == 2:
-        pair, pair_clean = list(chosen), not struct["structured"]
+        pair, pair_clean, pair_fit = list(chosen), not struct["structured"], current
         chosen, current, struct, fits = own_evidence(data, params, chosen, current, struct, fits, nq, nt, steps, ev,
                                                      drum.held(), names, drum.departures())
         partner = next((e for e in pair if e not in chosen), None) if len(chosen) == 1 and pair_clean else None
@@ -245,6 +245,8 @@ def diagnose(data: Measurements, params=None, effects=None, *, noise_torque_Nm: 
             if len(rivalry) < MAX_RIVALS and all(set(a["effects"]) != set(r["effects"]) for r in rivalry):
                 a["tell_apart"] = tell_apart(refined, a["fit"], validity(full), nq.sigma)
                 rivalry.append(a)
+    if len(selected) == 1 and partner is not None:                # dropped beside a second term of the first's law
+        rivalry = (_second_term_rival(steps, refined, pair_fit, validity(full), nq) + rivalry)[:MAX_RIVALS]
     if len(selected) >= 2 and not remaining:
         rivalry = set_rivals(data, params, names, [e["effect"] for e in selected], refined,
                              max(ess_inflation(refined).values()), SCREEN_ITERATIONS)
@@ -302,6 +304,24 @@ def _rivals(selected: list[dict], first: list[Candidate], base_cv, tested: dict,
     for a in out:
         a["tell_apart"] = tell_apart(best.fit, a["fit"], tested, nq.sigma)
     return out
+
+
+def _second_term_rival(steps: list[dict], verdict: FitResult, pair: FitResult, tested: dict, nq: Noise) -> list[dict]:
+    """The pair of effects dropped because the second adds too little beside the first with a second term of its
+    own law (:func:`rollaway.identify.partner.beyond_second_term`), as an alternative the data cannot rule out:
+    a second term of one law and a second effect write the same curve on these tests."""
+    own = next((s["beyond_reform"] for s in steps[::-1] if s.get("step") == "own evidence"), {})
+    term = own.get("second_term")
+    if term is None or pair.jacobian is None:
+        return []
+    names = [e.name for e in pair.model.effects]
+    return [{"kind": "rival", "effects": names, "delta_bic": float(term["delta_bic"]), "heldout_elpd": term["heldout_elpd"],
+             "heldout_se": term["heldout_se"], "fit": pair,
+             "why": (f"beside the first with a second term of its own law ({term['term']}) the second changes BIC by "
+                     f"{term['delta_bic']:+.1f} and the held-out log score by {term['heldout_elpd']:+.1f} ± "
+                     f"{term['heldout_se']:.1f}: one law written with two time constants and two laws write the same "
+                     f"curve here"),
+             "tell_apart": tell_apart(verdict, pair, tested, nq.sigma)}]
 
 
 def _same_drum(data, params, base: FitResult, first: list[Candidate]) -> list[Candidate]:
