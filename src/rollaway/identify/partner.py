@@ -237,23 +237,25 @@ def own_evidence(data, params, chosen, current, struct, fits, nq, nt, steps, ev,
         if wider is not None and not wider["passes"]:
             wider.pop("also", None)
             own, refree = dict(wider, departures=list(departures)), refree + departures
-    term = beyond_second_term(data, params, chosen[0], chosen[1], current) if own["passes"] else None
-    if term is not None and not term["passes"]:
-        own = dict(own, passes=False, second_term=term)
     steps.append({"step": "own evidence", "effect": chosen[1], "kept": own["passes"], "beyond_reform": own})
     if own["passes"]:
         back = beyond_reform(data, params, chosen[1:], current, current, refree)
-        if back is None or back["passes"]:
+        if back is not None and not back["passes"]:
+            back.pop("also", None)                  # the first is not beyond the second re-formed: a partner too
+            steps.append({"step": "own evidence of the first", "effect": chosen[0], "kept": False,
+                          "beyond_reform": back})
+            second = by_name[chosen[1]]
+            ev.append(f"{chosen[1]} predicts held-out tests better beside {chosen[0]} than {chosen[0]} re-formed, but "
+                      f"{chosen[0]} does not beside {chosen[1]} re-formed (its hook as a linear spline, no second "
+                      f"effect): held-out log score {back['heldout_elpd']:+.1f} ± {back['heldout_se']:.1f}, better in "
+                      f"{back['better_tests']} of {back['tests']} tests{_refit_words(back)} — {chosen[0]} only "
+                      f"absorbed {chosen[1]}'s form mismatch; {chosen[1]} is named alone.")
+            return [chosen[1]], second, structure(second, nq, nt), [second]
+        term = beyond_second_term(data, params, chosen[0], chosen[1], current)
+        if term is None or term["passes"]:
             return chosen, current, struct, fits
-        back.pop("also", None)                  # the first is not beyond the second re-formed: a partner too
-        steps.append({"step": "own evidence of the first", "effect": chosen[0], "kept": False, "beyond_reform": back})
-        second = by_name[chosen[1]]
-        ev.append(f"{chosen[1]} predicts held-out tests better beside {chosen[0]} than {chosen[0]} re-formed, but "
-                  f"{chosen[0]} does not beside {chosen[1]} re-formed (its hook as a linear spline, no second effect): "
-                  f"held-out log score {back['heldout_elpd']:+.1f} ± {back['heldout_se']:.1f}, better in "
-                  f"{back['better_tests']} of {back['tests']} tests{_refit_words(back)} — {chosen[0]} only absorbed "
-                  f"{chosen[1]}'s form mismatch; {chosen[1]} is named alone.")
-        return [chosen[1]], second, structure(second, nq, nt), [second]
+        own = dict(own, passes=False, second_term=term)     # a second term of the first's own law says as much
+        steps[-1].update(kept=False, beyond_reform=own)
     other = beside_reformed(data, params, chosen[0], first, names, nq, nt,
                             reform=reform[0] if reform else None) if names else None
     if other is not None:
