@@ -258,6 +258,9 @@ def own_evidence(data, params, chosen, current, struct, fits, nq, nt, steps, ev,
         steps[-1].update(kept=False, beyond_reform=own)
     other = beside_reformed(data, params, chosen[0], first, names, nq, nt,
                             reform=reform[0] if reform else None) if names else None
+    if other is not None and not _beside_departures(data, params, chosen[0], first, other[0], other[1],
+                                                    refree + departures):
+        other = None
     if other is not None:
         name, pair, dbic, pref = other
         steps.append({"step": "beside the re-formed first", "effect": name, "delta_bic": dbic, "heldout": pref})
@@ -310,21 +313,31 @@ def beside_partial(data, params, first: str, first_fit: FitResult, names, nq: No
     where it finds one, asked again with the drum's *departures* freed in both fits it compares
     (:meth:`rollaway.identify.drum.DrumCalibration.departures`: a radial contraction can stand in for a thicker
     lining beside a spline).  Returns :func:`beside_reformed`'s answer or None."""
-    from rollaway.identify.model import DrumPlan
     found = beside_reformed(data, params, first, first_fit, names, nq, nt, structured_only=False)
-    wider = tuple(n for n in departures if n not in getattr(params, "free", ()))
-    if found is None or not wider:
-        return found
-    name, pair = found[0], found[1]
-    job = _reform_job(params, first, first_fit)
-    plan = DrumPlan(params.params, tuple(params.free) + wider)
+    if found is None or not _beside_departures(data, params, first, first_fit, found[0], found[1], departures):
+        return None
+    return found
+
+
+def _beside_departures(data, params, first: str, first_fit: FitResult, name: str, pair: FitResult,
+                       departures=()) -> bool:
+    """Does *name*, found beside *first* re-formed (:func:`beside_reformed`), still lower BIC below
+    :data:`BIC_THRESHOLD` and predict held-out tests better with the drum's *departures* freed in both fits
+    (those *params* holds, but not a parameter of *name* itself: the gap beside an installation gap)?  A gap or a
+    radial contraction can stand in for a lining of another thickness, a friction change beside a spline for the
+    arm ratio the bare drum could not identify.  True where nothing is left to free or a fit fails."""
+    from rollaway.identify.model import DrumPlan
+    from rollaway.model.drum_parameters import FREE_PARAMETERS
+    wider = tuple(n for n in departures if n not in getattr(params, "free", ()) and FREE_PARAMETERS[n].effect != name)
+    job = _reform_job(params, first, first_fit) if wider else None
+    if job is None:
+        return True
+    plan = DrumPlan(params.params, tuple(params.free) + tuple(dict.fromkeys(wider)))
     reform, both = fit_all(data, [([job[0][0]], plan, dict(start=first_fit.values, max_iterations=REFORM_ITERATIONS)),
                                   ([job[0][0], name], plan, dict(start=pair.values, max_iterations=REFORM_ITERATIONS))])
     if reform.jacobian is None or both.jacobian is None:
-        return found
-    if both.bic - reform.bic >= BIC_THRESHOLD or not _heldout_preference(data, both, reform)["passes"]:
-        return None
-    return found
+        return True
+    return both.bic - reform.bic < BIC_THRESHOLD and _heldout_preference(data, both, reform)["passes"]
 
 
 def beside_reformed(data, params, first: str, first_fit: FitResult, names, nq: Noise, nt: Noise, reform=None,
