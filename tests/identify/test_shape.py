@@ -31,6 +31,22 @@ def test_no_other_form_beside_a_verdict_whose_catalogue_form_is_the_truth(i):
     if not judge(hidden, d)["right"]:
         pytest.skip(f"campaign {i}: verdict {d.verdict} (the name is judged elsewhere)")
     assert not [a for a in d.alternatives if a.get("form") == "shape-free"], d.alternatives
+    assert all(e["form"] == "exact" for e in d.effects), d.effects        # its own spline gains nothing
+
+
+def test_a_catalogue_form_its_own_spline_beats_by_bic_is_partial_beside_the_other_quantity():
+    """Held-out campaign 693 (a sigmoid lining-modulus drop on a drum with a thicker, softer lining, 5-min, both
+    directions): the residual of the linear friction law passes the structure tests, but friction's own spline
+    lowers BIC by 39 against it — the catalogue form is not the data's.  The verdict is friction_temperature of form
+    "partial" with the shape the data want, and the modulus spline, which fits as well, is named beside it (before:
+    friction_temperature "exact", nothing flagged).  Where a form's spline gains nothing, it stays exact (above)."""
+    hidden, data = campaign(693)
+    d = diagnose(data)
+    assert [(e["effect"], e["form"]) for e in d.effects] == [("friction_temperature", "partial")], d.effects
+    assert d.shape is not None and d.shape["effect"] == "friction_temperature"
+    assert not d.remaining_structure
+    assert judge(hidden, d)["right_or_alternative"], d.alternatives
+    assert any("catalogue form is not the data's" in e for e in d.evidence)
 
 
 def test_a_shape_free_tie_with_the_verdicts_own_shape_is_named_beside_it():

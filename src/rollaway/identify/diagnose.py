@@ -11,7 +11,9 @@
 3. If structure remains, the selected effect whose catalogue form explains most of the
    baseline's excess error is refitted in a flexible form (a linear spline of its hook,
    :mod:`rollaway.identify.shape`); if that clears the structure the effect is named with
-   ``form: "partial"`` and the shape the data want is returned.  Otherwise nothing is
+   ``form: "partial"`` and the shape the data want is returned (so is a one-effect verdict whose residual passes
+   the structure tests but whose own spline lowers BIC by more than 10: :func:`rollaway.identify.shape.loose_form`).
+   Otherwise nothing is
    claimed: verdict ``none`` with ``remaining_structure: true`` (an effect outside the
    catalogue remains), and the closest candidates named beside it are ranked by their shape-free forms too
    (:func:`rollaway.identify.shape.candidate_shapes`): one whose shape-free form clears the structure first.
@@ -40,7 +42,8 @@ from rollaway.identify.detection import detection_limits, hidden_shifts, hidden_
 from rollaway.identify.diagnose_words import describe_residual, no_candidate_words, noise_words, structure_words
 from rollaway.identify.partner import beside_partial, own_evidence, stood_for
 from rollaway.identify.predictive_set import attach_predictive, interval_words
-from rollaway.identify.shape import candidate_shapes, channel_alternatives, other_form_rivals, shape_rivals
+from rollaway.identify.shape import (candidate_shapes, channel_alternatives, channel_rivals, loose_form,
+                                     other_form_rivals, shape_rivals)
 from rollaway.identify.selection import (BIC_THRESHOLD, SCREEN_ITERATIONS, Candidate, cv_score, eliminate, exchange,
                                          folds, forward_step, has_per_test, per_test_signature, structure,
                                          weighted_chi2)
@@ -232,8 +235,14 @@ def diagnose(data: Measurements, params=None, effects=None, *, noise_torque_Nm: 
               "partial" if remaining or any(e["form"] != "exact" for e in selected) else False)
     # shape-free: the bands, other forms; where the form leaves structure, the other quantities' splines too
     forms, channels = shape_rivals(data, refined, drum.plan, first_cands if misfit else ()) if selected else ([], [])
+    loose = (loose_form(refined, forms, -BIC_THRESHOLD) if len(selected) == 1 and selected[0]["form"] == "exact"
+             and not remaining else None)
+    if loose is not None:                    # the structure tests pass, BIC does not: the form is not the data's
+        shape, misfit = _loose_shape(selected[0], base, refined, loose, ev), "partial"
+        channels = channel_rivals(data, refined, first_cands, drum.plan)
     rivalry = _rivals(selected, _same_drum(data, params, base, first_cands), base_cv, validity(full), nq)
-    if len(selected) == 1 and selected[0]["form"] == "exact" and not remaining and len(rivalry) < MAX_RIVALS:
+    if (len(selected) == 1 and (selected[0]["form"] == "exact" or loose is not None) and not remaining
+            and len(rivalry) < MAX_RIVALS):
         own = next((f for f in forms if len(f.effects) == 1), None)
         named = {e for a in rivalry for e in a["effects"]}
         for a in other_form_rivals(data, refined, own, [c for c in first_cands if c.effect not in named],
@@ -341,14 +350,33 @@ def _same_drum(data, params, base: FitResult, first: list[Candidate]) -> list[Ca
     return out
 
 
+def _share(base: FitResult, refined: FitResult) -> float | None:
+    """The share of the baseline's excess error (χ² beyond its degrees of freedom) that *refined* explains."""
+    excess = weighted_chi2(base) - (2 * len(base.data) - sum(base.effective_parameters.values()))
+    return None if excess <= 0 else float((weighted_chi2(base) - weighted_chi2(refined)) / excess)
+
+
+def _loose_shape(entry: dict, base: FitResult, refined: FitResult, loose: FitResult, ev: list[str]) -> dict:
+    """Mark the one-effect verdict *entry* "partial" where its shape-free form *loose* beats its catalogue form by BIC
+    (:func:`rollaway.identify.shape.loose_form`); says so in *ev*; returns the shape the data want."""
+    from rollaway.identify.shape import shape_curves
+    name, flex = entry["effect"], loose.model.effects[0]
+    shape = shape_curves(get_effect(name), refined, loose, type(flex) if not isinstance(flex, type) else flex)
+    shape["effect"] = name
+    share = _share(base, refined)
+    entry.update(form="partial", **({"explained_share": min(share, 1.0)} if share is not None else {}))
+    ev.append(f"{name}'s catalogue form is not the data's, though the residual passes the structure tests: its "
+              f"shape-free form (a linear spline of its {shape['hook']} hook in {shape['covariate']}) lowers BIC by "
+              f"{refined.bic - loose.bic:.1f} against it (more than {-BIC_THRESHOLD:g}): form \"partial\" — the data "
+              f"want the shape shown (write it as a plugin).")
+    return shape
+
+
 def _partial(data, params, base: FitResult, refined: FitResult, chosen: list[str], nq: Noise, nt: Noise):
     """The selected effect whose form is only partly right: (name, share, shape, structure) or None."""
     from rollaway.identify.shape import covariate_of, flexible_effect, shape_curves, shape_hook
-    excess = weighted_chi2(base) - (2 * len(data) - sum(base.effective_parameters.values()))
-    if excess <= 0:
-        return None
-    share = (weighted_chi2(base) - weighted_chi2(refined)) / excess
-    if share < PARTIAL_SHARE:
+    share = _share(base, refined)
+    if share is None or share < PARTIAL_SHARE:
         return None
     for name in chosen:
         eff = get_effect(name)
