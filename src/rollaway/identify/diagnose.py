@@ -12,9 +12,8 @@
    baseline's excess error is refitted in a flexible form (a linear spline of its hook,
    :mod:`rollaway.identify.shape`); if that clears the structure the effect is named with
    ``form: "partial"`` and the shape the data want is returned (so is a one-effect verdict whose residual passes
-   the structure tests but whose own spline lowers BIC by more than 10: :func:`rollaway.identify.shape.loose_form`).
-   Otherwise nothing is
-   claimed: verdict ``none`` with ``remaining_structure: true`` (an effect outside the
+   the structure tests but whose own spline lowers BIC by more than 10; both in :mod:`rollaway.identify.form`).
+   Otherwise nothing is claimed: verdict ``none`` with ``remaining_structure: true`` (an effect outside the
    catalogue remains), and the closest candidates named beside it are ranked by their shape-free forms too
    (:func:`rollaway.identify.shape.candidate_shapes`): one whose shape-free form clears the structure first.
 4. A second effect is named only on its own evidence (:func:`rollaway.identify.partner.own_evidence`); a
@@ -33,6 +32,7 @@ from rollaway.identify.calibrate import FitResult, calibrate, evaluate
 from rollaway.identify.coarse import MAX_WINDOW_S, coarsen
 from rollaway.identify.drum import calibrate_drum, free_needed, predictive_covariance, recheck
 from rollaway.identify.diagnosis import Diagnosis
+from rollaway.identify.form import loose_shape, partial_form
 from rollaway.identify.fitting import single_blas_thread
 from rollaway.identify.memo import memoised
 from rollaway.identify.intervals import covariance_variances, ess_inflation, mixture_variances, restate
@@ -45,12 +45,10 @@ from rollaway.identify.predictive_set import attach_predictive, interval_words
 from rollaway.identify.shape import (candidate_shapes, channel_alternatives, channel_rivals, loose_form,
                                      other_form_rivals, shape_rivals)
 from rollaway.identify.selection import (BIC_THRESHOLD, SCREEN_ITERATIONS, Candidate, cv_score, eliminate, exchange,
-                                         folds, forward_step, has_per_test, per_test_signature, structure,
-                                         weighted_chi2)
+                                         folds, forward_step, has_per_test, per_test_signature, structure)
 from rollaway.uncertainty.bands import validity
 
 MAX_EFFECTS = 2              # forward selection stops after this many effects (a third rarely survives CV)
-PARTIAL_SHARE = 0.5          # "explains most of the baseline's excess error"
 
 
 # -- noise ----------------------------------------------------------------------------------
@@ -184,7 +182,7 @@ def diagnose(data: Measurements, params=None, effects=None, *, noise_torque_Nm: 
         for j in range(1, len(chosen) + 1):       # the fewest effects whose flexible form clears the residual
             if fits[j - 1] is None:
                 continue
-            part = _partial(data, params, base, fits[j - 1], chosen[:j], nq, nt)
+            part = partial_form(data, params, base, fits[j - 1], chosen[:j], nq, nt)
             if part is not None:
                 break
         if part is None and partner is not None:
@@ -238,7 +236,7 @@ def diagnose(data: Measurements, params=None, effects=None, *, noise_torque_Nm: 
     loose = (loose_form(refined, forms, -BIC_THRESHOLD) if len(selected) == 1 and selected[0]["form"] == "exact"
              and not remaining else None)
     if loose is not None:                    # the structure tests pass, BIC does not: the form is not the data's
-        shape, misfit = _loose_shape(selected[0], base, refined, loose, ev), "partial"
+        shape, misfit = loose_shape(selected[0], base, refined, loose, ev), "partial"
         channels = channel_rivals(data, refined, first_cands, drum.plan)
     rivalry = _rivals(selected, _same_drum(data, params, base, first_cands), base_cv, validity(full), nq)
     if (len(selected) == 1 and (selected[0]["form"] == "exact" or loose is not None) and not remaining
@@ -317,7 +315,7 @@ def _rivals(selected: list[dict], first: list[Candidate], base_cv, tested: dict,
 
 def _second_term_rival(steps: list[dict], verdict: FitResult, pair: FitResult, tested: dict, nq: Noise) -> list[dict]:
     """The pair of effects dropped because the second adds too little beside the first with a second term of its
-    own law (:func:`rollaway.identify.partner.beyond_second_term`), as an alternative the data cannot rule out:
+    own law (:func:`rollaway.identify.beyond.beyond_second_term`), as an alternative the data cannot rule out:
     a second term of one law and a second effect write the same curve on these tests."""
     own = next((s["beyond_reform"] for s in steps[::-1] if s.get("step") == "own evidence"), {})
     term = own.get("second_term")
@@ -348,50 +346,6 @@ def _same_drum(data, params, base: FitResult, first: list[Candidate]) -> list[Ca
             out.append(Candidate(c.effect, fit, fit.bic - base.bic, fit.aic - base.aic, c.cv_score,
                                  c.cv_better_tests, c.step))
     return out
-
-
-def _share(base: FitResult, refined: FitResult) -> float | None:
-    """The share of the baseline's excess error (χ² beyond its degrees of freedom) that *refined* explains."""
-    excess = weighted_chi2(base) - (2 * len(base.data) - sum(base.effective_parameters.values()))
-    return None if excess <= 0 else float((weighted_chi2(base) - weighted_chi2(refined)) / excess)
-
-
-def _loose_shape(entry: dict, base: FitResult, refined: FitResult, loose: FitResult, ev: list[str]) -> dict:
-    """Mark the one-effect verdict *entry* "partial" where its shape-free form *loose* beats its catalogue form by BIC
-    (:func:`rollaway.identify.shape.loose_form`); says so in *ev*; returns the shape the data want."""
-    from rollaway.identify.shape import shape_curves
-    name, flex = entry["effect"], loose.model.effects[0]
-    shape = shape_curves(get_effect(name), refined, loose, type(flex) if not isinstance(flex, type) else flex)
-    shape["effect"] = name
-    share = _share(base, refined)
-    entry.update(form="partial", **({"explained_share": min(share, 1.0)} if share is not None else {}))
-    ev.append(f"{name}'s catalogue form is not the data's, though the residual passes the structure tests: its "
-              f"shape-free form (a linear spline of its {shape['hook']} hook in {shape['covariate']}) lowers BIC by "
-              f"{refined.bic - loose.bic:.1f} against it (more than {-BIC_THRESHOLD:g}): form \"partial\" — the data "
-              f"want the shape shown (write it as a plugin).")
-    return shape
-
-
-def _partial(data, params, base: FitResult, refined: FitResult, chosen: list[str], nq: Noise, nt: Noise):
-    """The selected effect whose form is only partly right: (name, share, shape, structure) or None."""
-    from rollaway.identify.shape import covariate_of, flexible_effect, shape_curves, shape_hook
-    share = _share(base, refined)
-    if share is None or share < PARTIAL_SHARE:
-        return None
-    for name in chosen:
-        eff = get_effect(name)
-        found = shape_hook(eff)
-        if found is None:
-            continue
-        flex = flexible_effect(eff, covariate_of(refined, found[1]))
-        if flex is None:
-            continue
-        others = [c for c in chosen if c != name]
-        fit = calibrate(data, others + [flex], params, start=refined.values)
-        s = structure(fit, nq, nt)
-        if not s["structured"]:
-            return name, float(share), shape_curves(eff, refined, fit, flex), s
-    return None
 
 
 def _test_offsets(fit: FitResult, nq: Noise) -> bool:
