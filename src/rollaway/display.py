@@ -33,7 +33,8 @@ def sim_result_html(r) -> str:
 def diagnosis_html(d) -> str:
     rows = {c.effect: f"ΔBIC {c.delta_bic:+.1f}, torque RMSE {c.fit.rmse_torque_Nm:.3g} N·m"
             for c in getattr(d, "candidates", [])[:5]}
-    names = " or ".join([d.verdict] + [" + ".join(a["effects"]) for a in getattr(d, "alternatives", []) or []])
+    named = " + ".join(e["effect"] for e in getattr(d, "effects", []) or []) or d.verdict
+    names = " or ".join([named] + [" + ".join(a["effects"]) for a in getattr(d, "alternatives", []) or []])
     return result_html(f"missing effect: {names}", rows, d.verdict != "none" or not d.remaining_structure)
 
 

@@ -5,7 +5,8 @@ from types import SimpleNamespace
 import numpy as np
 import pytest
 
-from rollaway.identify.ambiguity import HELDOUT_SE, INDISTINGUISHABLE_BIC, heldout_difference, rivals, verdict_line
+from rollaway.identify.ambiguity import (HELDOUT_SE, INDISTINGUISHABLE_BIC, alternative_words, heldout_difference, rivals,
+                                         verdict_line)
 
 
 def _fit(res_torque, tests=8):
@@ -77,6 +78,17 @@ def test_verdict_line_names_every_alternative_and_the_test():
     assert line.startswith("friction_temperature or modulus_temperature: these data cannot tell them apart; a test")
     assert verdict_line("none", []) == "none"
     assert verdict_line("none", [], structure=True).startswith("none: structure remains that no catalogue effect")
+
+
+def test_the_verdict_line_sets_every_named_effect_against_an_alternative_that_replaces_one_of_them():
+    named = ["friction_temperature", "cable_relaxation"]
+    alts = [{"effects": ["friction_temperature", "shoe_thermal_lag"], "why": "with a spline in time_s …",
+             "tell_apart": {"words": "a test held 3600 s would"}}]
+    line = verdict_line("friction_temperature", alts, named=named)
+    assert line.startswith("friction_temperature + cable_relaxation or friction_temperature + shoe_thermal_lag: ")
+    assert verdict_line("friction_temperature", [], named=named) == "friction_temperature + cable_relaxation"
+    words = alternative_words("friction_temperature", alts, named)
+    assert words[0].startswith("friction_temperature + cable_relaxation or friction_temperature + shoe_thermal_lag")
 
 
 def test_friction_and_modulus_on_one_direction_are_named_together_with_the_direction_as_the_test():

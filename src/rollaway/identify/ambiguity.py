@@ -340,8 +340,9 @@ def _closest_clause(alternatives: list[dict]) -> tuple[str, str]:
             f"the data lean to {clear[0]}; {words}")
 
 
-def alternative_words(verdict: str, alternatives: list[dict]) -> list[str]:
-    """The evidence lines of a verdict's alternatives (rivals, closest or weak)."""
+def alternative_words(verdict: str, alternatives: list[dict], named=()) -> list[str]:
+    """The evidence lines of a verdict's alternatives (rivals, closest or weak), each set against the *named* effects
+    (all of them; *verdict*, the first, where none are given)."""
     if not alternatives:
         return []
     kind = alternatives[0].get("kind")
@@ -356,12 +357,13 @@ def alternative_words(verdict: str, alternatives: list[dict]) -> list[str]:
                    ": they point at the physics, they do not explain it")
                 + (f"; {between}." if between else ".")]
     return [f"{a['effects'][0]} is not ruled out: {a['why']}; {a['tell_apart']['words']}." if a.get("kind") == "weak"
-            else f"{' + '.join(a.get('verdict_effects') or [verdict])} or {' + '.join(a['effects'])}: these data "
+            else f"{' + '.join(a.get('verdict_effects') or named or [verdict])} or {' + '.join(a['effects'])}: these data "
                  f"cannot tell them apart — {a['why']}; {a['tell_apart']['words']}." for a in alternatives]
 
 
-def verdict_line(verdict: str, alternatives: list[dict], detection=(), structure: bool = False) -> str:
-    """"A or B: these data cannot tell them apart; a test at … would" (or the verdict alone); for a verdict
+def verdict_line(verdict: str, alternatives: list[dict], detection=(), structure: bool = False, named=()) -> str:
+    """"A or B: these data cannot tell them apart; a test at … would" (or the verdict alone), A the *named* effects
+    (all of them, "A1 + A2"; *verdict*, the first, where none are given); for a verdict
     ``none`` with the closest catalogue effects (:func:`closest`): "none explains …; closest: A or B"; for a bare
     ``none`` whose *detection* limits (:mod:`rollaway.identify.detection`) exceed typical sizes: what could hide; for
     a ``none`` whose residual keeps *structure* and no candidate points anywhere: that structure remains."""
@@ -371,7 +373,7 @@ def verdict_line(verdict: str, alternatives: list[dict], detection=(), structure
     if not alternatives:
         from rollaway.identify.detection import blind
         missed = blind(detection) if verdict == "none" else []
-        return verdict + (f" (not found; these data could miss {len(missed)} of {len(detection)} effects at the "
+        return (" + ".join(named) or verdict) + (f" (not found; these data could miss {len(missed)} of {len(detection)} effects at the "
                           f"size real drums show: {', '.join(missed[:3])}{', …' if len(missed) > 3 else ''}; "
                           f"see the detection limits)" if missed else "")
     if alternatives[0].get("kind") == "weak":
@@ -382,7 +384,7 @@ def verdict_line(verdict: str, alternatives: list[dict], detection=(), structure
         left, between = _closest_clause(alternatives)
         return (f"none: structure remains that no catalogue effect explains; closest: {names} ({left})"
                 + (f"; {between}" if between else ""))
-    names = " or ".join([" + ".join(alternatives[0].get("verdict_effects") or [verdict])]
+    names = " or ".join([" + ".join(alternatives[0].get("verdict_effects") or named or [verdict])]
                         + [" + ".join(a["effects"]) for a in alternatives])
     return f"{names}: these data cannot tell them apart; {alternatives[0]['tell_apart']['words']}"
 

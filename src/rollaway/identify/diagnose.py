@@ -265,7 +265,7 @@ def diagnose(data: Measurements, params=None, effects=None, *, noise_torque_Nm: 
         forms = [a["shape_fit"] for a in rivalry if "shape_fit" in a]       # the closest effects' own shapes
     weak = weak_alternatives(params, base, first_cands, validity(full), nq.sigma) if not chosen and not remaining else []
     indist = [" + ".join(a["effects"]) for a in rivalry + weak]
-    ev += alternative_words(verdict, rivalry + weak)
+    ev += alternative_words(verdict, rivalry + weak, [e["effect"] for e in selected])
     limits = detection_limits(data, base) if verdict == "none" and not remaining else []
     if limits:
         ev.append(limits_words(limits))

@@ -48,6 +48,11 @@ class Diagnosis(CalibratedModelMixin):
     detection: list[dict] = field(default_factory=list)    # with "none": the least size of each effect found (detection.py)
     hidden: list[dict] = field(default_factory=list)       # effects the data could miss, and the values with them
 
+    @property
+    def named(self) -> list[str]:
+        """Every effect named, in order (``verdict`` is the first)."""
+        return [e["effect"] for e in self.effects]
+
     def as_dict(self) -> dict:
         def rm(f):
             return {"rmse_torque_Nm": f.rmse_torque_Nm, "rmse_temp_C": f.rmse_temp_C, "bic": f.bic, "aic": f.aic,
@@ -60,7 +65,7 @@ class Diagnosis(CalibratedModelMixin):
                 "baseline": {**rm(self.baseline), "cv_score": self.baseline_cv},
                 "candidates": [c.as_dict() for c in self.candidates],
                 "verdict": self.verdict, "verdict_line": verdict_line(self.verdict, self.alternatives, self.detection,
-                                                                     self.remaining_structure),
+                                                                     self.remaining_structure, self.named),
                 "alternatives": [{k: v for k, v in a.items() if k != "fit"} for a in self.alternatives],
                 "effects": self.effects,
                 "indistinguishable_from": self.indistinguishable_from,
@@ -82,7 +87,7 @@ class Diagnosis(CalibratedModelMixin):
 
     def summary(self) -> str:
         forms = ", ".join(f"{e['effect']} ({e['form']})" for e in self.effects)
-        head = verdict_line(self.verdict, self.alternatives, self.detection, self.remaining_structure)
+        head = verdict_line(self.verdict, self.alternatives, self.detection, self.remaining_structure, self.named)
         lines = [f"verdict: {head}" + (f"   effects: {forms}" if len(self.effects) > 1 or
                                                 any(e["form"] != "exact" for e in self.effects) else "")]
         lines += [f"  {w}" for w in self.evidence]

@@ -277,11 +277,16 @@ def diagnosis_report(diag, path) -> None:
     noise = _noise(diag)
     verdict = getattr(diag, "verdict", "none")
     alts = getattr(diag, "alternatives", []) or []
+    named = [e["effect"] for e in getattr(diag, "effects", []) or []]
     if verdict != "none" and alts:
         from rollaway.identify.ambiguity import verdict_line
-        head = f"Missing effect: {verdict_line(verdict, alts)}."
+        head = f"Missing effect: {verdict_line(verdict, alts, named=named)}."
     elif verdict != "none":
-        head = f"Missing effect found: {verdict}. With it the residual is consistent with the measurement noise."
+        head = (f"Missing effect{'s' if len(named) > 1 else ''} found: {' + '.join(named) or verdict}. "
+                + (("The residual still has structure: the data want a form the catalogue does not write (the shape "
+                    "below)." if getattr(diag, "shape", None) else "The residual still has structure that no "
+                    "catalogue effect explains.") if getattr(diag, "remaining_structure", False) else
+                   "With it the residual is consistent with the measurement noise."))
     elif getattr(diag, "remaining_structure", False):
         head = ("No effect of the catalogue explains the data: the residual still has structure. "
                 "An effect outside the catalogue (or several together) is missing.")
