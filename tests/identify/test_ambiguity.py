@@ -1,5 +1,6 @@
 """rollaway.identify.ambiguity: the held-out comparison against its closed form, which rivals are named,
 and the test that would tell two calibrated models apart (on data the model code did not make)."""
+import json
 from types import SimpleNamespace
 
 import numpy as np
@@ -136,6 +137,9 @@ def test_a_form_outside_the_catalogue_names_the_closest_effects_and_clean_data_n
         assert 1 <= len(d.alternatives) <= 2 and all(a["kind"] == "closest" for a in d.alternatives)
         hits += "modulus_temperature" in {a["effects"][0] for a in d.alternatives}
         assert d.summary().startswith("verdict: none: structure remains")
+        j = json.loads(d.to_json())                  # the closest effects' shape-free fits stay out of the JSON
+        assert [a["effects"] for a in j["alternatives"]] == [a["effects"] for a in d.alternatives]
+        assert not any(k.endswith("fit") for a in j["alternatives"] for k in a)
         saved = {tuple(f.effects) for _, f in d.refined.fit_info["alternatives"]} | {tuple(d.refined.effects)}
         assert all(tuple(a["effects"]) in saved for a in d.alternatives)
     assert structured >= 3 and hits >= structured - 1, (structured, hits)

@@ -126,6 +126,7 @@ def write_outputs(result, *, report=None, json_out=None, plot=None, fmt: str = "
         result.report(report)
         say(f"report: {report}")
     if json_out:
+        text = json.dumps(to_jsonable(result.as_dict()), indent=2)     # whole before the file is opened
         with open(json_out, "w", encoding="utf-8") as fh:
-            json.dump(to_jsonable(result.as_dict()), fh, indent=2)
+            fh.write(text + "\n")
         say(f"json: {json_out}")

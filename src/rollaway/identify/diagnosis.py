@@ -66,7 +66,8 @@ class Diagnosis(CalibratedModelMixin):
                 "candidates": [c.as_dict() for c in self.candidates],
                 "verdict": self.verdict, "verdict_line": verdict_line(self.verdict, self.alternatives, self.detection,
                                                                      self.remaining_structure, self.named),
-                "alternatives": [{k: v for k, v in a.items() if k != "fit"} for a in self.alternatives],
+                "alternatives": [{k: v for k, v in a.items() if not isinstance(v, FitResult)}   # fit, shape_fit
+                                 for a in self.alternatives],
                 "effects": self.effects,
                 "indistinguishable_from": self.indistinguishable_from,
                 "refined": {"effects": self.refined.effects, **rm(self.refined)},
