@@ -204,6 +204,9 @@ def diagnose(data: Measurements, params=None, effects=None, *, noise_torque_Nm: 
             refined = fits[j - 1]
             struct = structure(refined, nq, nt)
             dropped = chosen[j:]
+            beside = next((st["effect"] for st in steps if st.get("step") == "beside the re-formed first"), None)
+            keep = j == 1 and dropped == [beside]     # found beside this form re-formed (partner.own_evidence)
+            dropped = [] if keep else dropped
             selected = [{"effect": e, "form": "partial" if e == name else "exact"} for e in chosen[:j]]
             for e in selected:
                 if e["effect"] == name:
@@ -215,7 +218,11 @@ def diagnose(data: Measurements, params=None, effects=None, *, noise_torque_Nm: 
                       f"the shape shown (write it as a plugin)."
                       + (f"  {', '.join(dropped)} only absorbed part of this form mismatch and is not kept."
                          if dropped else ""))
-            other = (beside_partial(data, params, name, refined, names, nq, nt, drum.departures())
+            if keep:
+                refined = fits[1]
+                struct = structure(refined, nq, nt)
+                selected.append({"effect": beside, "form": "exact"})
+            other = (beside_partial(data, params, name, refined, names, drum.departures())
                      if len(chosen) == 1 and max_effects > 1 else None)
             if other is not None:                   # a second effect beside the partial one, on its own evidence
                 second, refined, dbic, pref = other

@@ -2,14 +2,15 @@
 
 Two effects that pass the forward steps are both named only when the second predicts held-out tests better than
 the first *re-formed* (its hook as a linear spline: :func:`~rollaway.identify.beyond.beyond_reform`), with the pair ordered by what each
-explains alone (:func:`own_evidence`).  When the first effect's catalogue form is wrong and its re-formed
-version still leaves structure, a second effect is sought beside the re-formed first (:func:`beside_reformed`),
-and it must also beat its own re-formed version alone: one mis-formed effect is not a pair.  The tests each second
+explains alone (:func:`own_evidence`).  Where the pair does not, a second effect is sought beside the re-formed
+first (:func:`beside_reformed`): the first's catalogue form may be wrong and the forward step, beside it, may have
+picked the wrong second effect, or the pair's gain may be split with the first's misfit although the second adds
+what no spline of the first's hook can (a temperature law beside a creep).  It must also beat its own re-formed
+version alone: one mis-formed effect is not a pair.  The tests each second
 effect must pass, and the held-out rule they share, are :mod:`rollaway.identify.beyond`.
 """
 from __future__ import annotations
 
-from rollaway.bench.noise import Noise
 from rollaway.identify.beyond import beyond_reform, beyond_second_term, heldout_preference, refit_words
 from rollaway.identify.calibrate import FitResult, calibrate
 from rollaway.identify.workers import fit_all
@@ -23,7 +24,8 @@ def own_evidence(data, params, chosen, current, struct, fits, nq, nt, steps, ev,
     creep can stand in for a thicker, softer lining than the set's, which the gap imitates in eq. (16b); asked
     only of a pair that passes, since those fits are slow: the gap and μ_d are nearly one direction of the
     least-squares problem); else the effect of *names* that does beside the first re-formed
-    (:func:`beside_reformed`), or none: keep the first alone.  A pair that passes is kept only if the first, in
+    (:func:`beside_reformed`, sought whether or not the re-formed first leaves structure: the structure tests at
+    p < 0.001 miss what BIC and the held-out tests see), or none: keep the first alone.  A pair that passes is kept only if the first, in
     turn, predicts better than the second re-formed; else the second alone (the first only absorbed its form
     mismatch: a friction change beside a creep whose catalogue law flattens too early).  Logs to *steps*, explains in *ev*;
     returns (chosen, current fit, its structure, fits per step).
@@ -71,7 +73,7 @@ def own_evidence(data, params, chosen, current, struct, fits, nq, nt, steps, ev,
             return chosen, current, struct, fits
         own = dict(own, passes=False, second_term=term)     # a second term of the first's own law says as much
         steps[-1].update(kept=False, beyond_reform=own)
-    other = beside_reformed(data, params, chosen[0], first, names, nq, nt,
+    other = beside_reformed(data, params, chosen[0], first, names,
                             reform=reform[0] if reform else None) if names else None
     if other is not None and not _beside_departures(data, params, chosen[0], first, other[0], other[1],
                                                     refree + departures):
@@ -121,14 +123,13 @@ def _reform_job(params, first: str, first_fit: FitResult):
     return None if flex is None else ([flex], params, dict(start=first_fit.values, max_iterations=REFORM_ITERATIONS))
 
 
-def beside_partial(data, params, first: str, first_fit: FitResult, names, nq: Noise, nt: Noise, departures=()):
+def beside_partial(data, params, first: str, first_fit: FitResult, names, departures=()):
     """A second effect beside a first whose shape-free form clears the structure (a verdict of form "partial"):
-    :func:`beside_reformed` without its need for structure — the structure tests miss at p < 0.001 what BIC and the
-    held-out tests still show (a radiating drum's temperature law beside a creep the catalogue writes wrongly) — and,
-    where it finds one, asked again with the drum's *departures* freed in both fits it compares
+    :func:`beside_reformed` — the structure tests miss at p < 0.001 what BIC and the held-out tests still show (a
+    radiating drum's temperature law beside a creep the catalogue writes wrongly) — and, where it finds one, asked again with the drum's *departures* freed in both fits it compares
     (:meth:`rollaway.identify.drum.DrumCalibration.departures`: a radial contraction can stand in for a thicker
     lining beside a spline).  Returns :func:`beside_reformed`'s answer or None."""
-    found = beside_reformed(data, params, first, first_fit, names, nq, nt, structured_only=False)
+    found = beside_reformed(data, params, first, first_fit, names)
     if found is None or not _beside_departures(data, params, first, first_fit, found[0], found[1], departures):
         return None
     return found
@@ -155,17 +156,16 @@ def _beside_departures(data, params, first: str, first_fit: FitResult, name: str
     return both.bic - reform.bic < BIC_THRESHOLD and heldout_preference(data, both, reform)["passes"]
 
 
-def beside_reformed(data, params, first: str, first_fit: FitResult, names, nq: Noise, nt: Noise, reform=None,
-                    structured_only: bool = True):
+def beside_reformed(data, params, first: str, first_fit: FitResult, names, reform=None):
     """A second effect on the evidence it has beside the first effect *first* re-formed (its hook as a linear
     spline, :func:`rollaway.identify.shape.flexible_effect`), for when the first's catalogue form is wrong: then
     the pair keeps the first's misfit and the first re-formed absorbs part of the second, and a forward step on
-    the catalogue form can pick the wrong second effect.  Only when the first re-formed still leaves structure.
+    the catalogue form can pick the wrong second effect.
     Each effect of *names* is screened beside the re-formed first (:data:`SCREEN_ITERATIONS`, the spline held where
     the re-formed first put it: its effect parameters and the brake parameters fitted); the best by BIC
     is refitted with everything free and must lower BIC below :data:`BIC_THRESHOLD` and predict held-out tests better by
     :func:`~rollaway.identify.beyond.beyond_reform`'s rule.  *reform*: that re-formed first, when already fitted (:func:`_reform_job`).
-    *structured_only* false: sought also where the re-formed first leaves no structure (:func:`beside_partial`).
+    Sought whether or not the re-formed first leaves structure.
     Returns (name, the catalogue pair's fit, ΔBIC, held-out comparison) or None."""
     from rollaway.effects import get_effect
     job = _reform_job(params, first, first_fit)
@@ -174,7 +174,7 @@ def beside_reformed(data, params, first: str, first_fit: FitResult, names, nq: N
     flex = job[0][0]
     if reform is None:
         reform = calibrate(data, *job[:2], **job[2])
-    if reform.jacobian is None or (structured_only and not structure(reform, nq, nt)["structured"]):
+    if reform.jacobian is None:
         return None
     others = [c for c in names if c != first and not get_effect(c).per_test_parameters()]
     jobs = [([flex, c], params, dict(start=reform.values, free=_all_but(params, flex, c), statistics=False,
