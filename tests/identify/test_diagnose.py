@@ -127,3 +127,23 @@ def test_cli_bad_effect_names_exit_2(tmp_path, run_cli):
     assert code == 2 and "did you mean 'lining_creep'" in err
     code, _, err = run_cli("synth", "--effect", "lining_creep=bogus=1")
     assert code == 2 and "no parameter 'bogus'" in err
+
+
+def test_cli_diagnose_report_of_a_dense_log_selected_on_merged_rows(tmp_path, run_cli):
+    """Above :data:`rollaway.identify.coarse.SELECTION_ROWS` rows the selection runs on merged rows and the chosen
+    model is refitted on all: the report draws every model at one set of rows (the selection's) and the JSON and
+    model file are written whole."""
+    from rollaway.identify.coarse import SELECTION_ROWS
+    csv = tmp_path / "dense.csv"
+    code, _, err = run_cli("synth", "--effect", "lining_creep=relaxed_fraction=0.1", "--seed", "4", "--dt-s", "10",
+                           "--out", csv)
+    assert code == 0, err
+    assert len(csv.read_text().splitlines()) - 1 > SELECTION_ROWS
+    code, out, err = run_cli("diagnose", csv, "--json", tmp_path / "d.json", "--report", tmp_path / "d.html",
+                             "--save-model", tmp_path / "m.toml")
+    assert code == 0, err
+    j = json.loads((tmp_path / "d.json").read_text())
+    assert j["verdict"] == "lining_creep"
+    assert any("Selection ran on" in e for e in j["evidence"])
+    html = (tmp_path / "d.html").read_text()
+    assert "Error ladder" in html and "Signals" in html

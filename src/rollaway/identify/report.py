@@ -352,7 +352,7 @@ def diagnosis_report(diag, path) -> None:
                "is better; about the number of samples when the model predicts down to the noise). Only "
                "candidates with ΔBIC below −10 are cross-validated.</p>")
     body += "<h2>Fit of the refined model</h2>" + fit_statistics(diag.refined, noise)
-    body += "<h2>Error ladder</h2>" + plot(ladder_figure(diag.data, fits))
+    body += "<h2>Error ladder</h2>" + plot(ladder_figure(diag.baseline.data, fits))   # the selection's rows
     body += ("<h2>Signals: calibrated paper model (dashed) and refined (solid)</h2>"
              + plot(signals_figure([("calibrated paper model", diag.baseline), ("refined", diag.refined)])))
     body += "<h2>Residuals of the calibrated paper model</h2>" + plot(residual_figure(diag.baseline, noise))

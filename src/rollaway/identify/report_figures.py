@@ -142,8 +142,17 @@ def curves_by_test(data, y, ref, cols, name: str, dash: str, group: str, width=1
     return out
 
 
+def prediction_on(fit, data):
+    """*fit*'s prediction at the rows of *data*: its own where it was fitted on them, else computed there (a model
+    selected on merged windows of a dense log and refitted on every row is drawn on one set of rows)."""
+    if fit.data is data or (len(fit.data) == len(data) and np.array_equal(fit.data.time_s, data.time_s)):
+        return fit.prediction
+    return fit.model.predict(data, fit.values)
+
+
 def signals_figure(fits) -> dict:
-    """Measured points and model curves per test, both channels; one dash style per model."""
+    """Measured points and model curves per test, both channels; one dash style per model (each drawn at the rows
+    of the first model's data)."""
     data = fits[0][1].data
     axes, (rq, rt) = grid(1, 2, hgap=0.08, titles=["torque", "drum temperature"], xtitles=["time [s]"] * 2,
                           ytitles=["torque per drum [N·m]", "drum temperature [°C]"])
@@ -151,8 +160,9 @@ def signals_figure(fits) -> dict:
     traces = (points_by_test(data, data.time_s, data.torque_Nm, rq, cols, labels, "N·m", True)
               + points_by_test(data, data.time_s, data.drum_temp_C, rt, cols, labels, "°C", False))
     for j, (name, f) in enumerate(fits):
-        traces += curves_by_test(data, f.prediction.torque_Nm, rq, cols, name, DASHES[j % 4], f"model {j}")
-        traces += curves_by_test(data, f.prediction.drum_temp_C, rt, cols, name, DASHES[j % 4], f"model {j}",
+        pred = prediction_on(f, data)
+        traces += curves_by_test(data, pred.torque_Nm, rq, cols, name, DASHES[j % 4], f"model {j}")
+        traces += curves_by_test(data, pred.drum_temp_C, rt, cols, name, DASHES[j % 4], f"model {j}",
                                  legend=False)
     return {"data": traces, "layout": base_layout(460, axes)}
 
@@ -209,15 +219,15 @@ def ladder_figure(data, rungs) -> dict:
     for k, vals in (("xaxis", [f.rmse_torque_Nm for _, f in rungs]),
                     ("xaxis2", [f.rmse_temp_C for _, f in rungs])):
         axes[k]["range"] = [0.0, 1.25 * max([v for v in vals if np.isfinite(v)] + [1e-9])]   # room for the labels
-    before, after = rungs[1][1], rungs[-1][1]
+    before, after = (prediction_on(f, data) for f in (rungs[1][1], rungs[-1][1]))
     cols, labels = colors(data.n_tests), legend_labels(data)
     traces += points_by_test(data, data.time_s, data.torque_Nm, refs[2], cols, labels, "N·m", True, size=5)
-    traces += curves_by_test(data, before.prediction.torque_Nm, refs[2], cols, "calibrated paper model", "dash",
+    traces += curves_by_test(data, before.torque_Nm, refs[2], cols, "calibrated paper model", "dash",
                              "before", width=1)
-    traces += curves_by_test(data, after.prediction.torque_Nm, refs[2], cols, "refined model", "solid", "after")
-    traces += curves_by_test(data, data.torque_Nm - before.prediction.torque_Nm, refs[3], cols,
+    traces += curves_by_test(data, after.torque_Nm, refs[2], cols, "refined model", "solid", "after")
+    traces += curves_by_test(data, data.torque_Nm - before.torque_Nm, refs[3], cols,
                              "residual, calibrated paper model", "dash", "before", width=1, mode="lines+markers")
-    traces += curves_by_test(data, data.torque_Nm - after.prediction.torque_Nm, refs[3], cols,
+    traces += curves_by_test(data, data.torque_Nm - after.torque_Nm, refs[3], cols,
                              "residual, refined model", "solid", "after", mode="lines+markers", symbol="square")
     shapes = [{"type": "line", "xref": f"{refs[3][0]} domain", "yref": refs[3][1], "x0": 0, "x1": 1, "y0": 0,
                "y1": 0, "line": {"color": "#666", "width": 1}, "layer": "below"}]
