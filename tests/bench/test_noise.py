@@ -1,5 +1,6 @@
 """Pseudo-residual noise estimates stay finite where the cooling coordinate e^{−t/τ} underflows to 0."""
 import numpy as np
+import pytest
 
 from rollaway.bench.noise import noise_estimate, pseudo_residuals
 from rollaway.identify.synth import synth
@@ -38,3 +39,21 @@ def test_a_dense_log_is_estimated_on_evenly_spread_windows_and_finds_its_noise(m
     monkeypatch.setattr(noise, "MAX_WINDOWS", None)                   # every window: the same noise, within 3 %
     every = noise_estimate(d, d.torque_Nm, 1000.0, relative=True)
     assert abs(nq.at(800.0) / every.at(800.0) - 1.0) < 0.03 and abs(nq.mean_factor / every.mean_factor - 1) < 0.03
+
+
+@pytest.mark.parametrize("command", [("compare",), ("diagnose",), ("fit", "--effect", "lining_creep")])
+def test_a_torque_column_of_zeros_is_one_line_naming_the_column(tmp_path, run_cli, command):
+    """A log whose torque is 0 in every row measured nothing (a column map pointing at an unused channel): exit 2 and
+    one line naming the file and the column, no traceback."""
+    csv = tmp_path / "zero.csv"
+    code, _, err = run_cli("synth", "--seed", "1", "--out", csv)
+    assert code == 0, err
+    lines = csv.read_text().splitlines()
+    col = lines[0].split(",").index("torque_Nm")
+    rows = [r.split(",") for r in lines[1:]]
+    for r in rows:
+        r[col] = "0"
+    csv.write_text("\n".join([lines[0]] + [",".join(r) for r in rows]) + "\n")
+    code, out, err = run_cli(command[0], csv, *command[1:])
+    assert code == 2, (out, err)
+    assert "Traceback" not in err and f"{csv}, column 'torque_Nm': 0 in every row" in err

@@ -140,3 +140,20 @@ def test_point_ids_are_stable_vectorised_and_ignore_the_sign_of_zero():
     assert other.strip() == str(ids)                        # same ids in another process
     changed = base.replace(mu_drum=0.41)
     assert set(point_ids(changed, spec.points)).isdisjoint(ids)   # the base's parameters are part of the id
+
+
+def test_a_sweep_on_a_model_takes_the_axes_it_does_not_set_from_the_model(tmp_path):
+    """μ_d and μ_r unset by the sweep are the model's (a calibrated μ_d), not the base's paper values; an axis the
+    sweep sets keeps its values."""
+    import rollaway
+    f = tmp_path / "s.toml"
+    f.write_text('base_preset = "fmvss135"\nsimulate = "none"\n[grid]\ngrade_pct = [10, 20]\n')
+    model = rollaway.DrumModel("paper").replace_params(mu_drum=0.27, tyre_road_mu=0.7)
+    s = load_sweep(f).with_model(model)
+    assert np.allclose(s.points["mu_drum"], 0.27) and np.allclose(s.points["tyre_road_mu"], 0.7)
+    assert sorted(set(s.points["grade_pct"])) == [10.0, 20.0]
+    f.write_text('base_preset = "fmvss135"\nsimulate = "none"\n[grid]\nmu_drum = [0.3, 0.4]\n')
+    s = load_sweep(f).with_model(model)
+    assert sorted(set(s.points["mu_drum"])) == [0.3, 0.4] and np.allclose(s.points["tyre_road_mu"], 0.7)
+    res = rollaway.sweep(f, tmp_path / "out", model=model, plots=False)
+    assert sorted(set(res.table["mu_drum"])) == [0.3, 0.4]

@@ -26,6 +26,8 @@ from dataclasses import dataclass
 import numpy as np
 from scipy import optimize, special
 
+from rollaway.errors import UserError
+
 CLIP = 3.5                 # values beyond ±3.5 σ are outliers (a spike, the samples around a step)
 # E[Z²·1(|Z| < c)] for standard normal Z: keeps the trimmed mean square Gaussian-consistent
 CLIP_GAUSS = float(1 - 2 * (CLIP * (math.exp(-0.5 * CLIP * CLIP) / math.sqrt(2 * math.pi)) + special.ndtr(-CLIP)))
@@ -159,7 +161,13 @@ def sample_sigma(noise: Noise, data, level) -> np.ndarray:
 
 
 def noise_estimate(data, values: np.ndarray, time_constant_s: float, relative: bool = False) -> Noise | None:
-    """Noise of one channel of *data* (any sampling, ≥ 3 samples per test); None if no window exists."""
+    """Noise of one channel of *data* (any sampling, ≥ 3 samples per test); None if no window exists.  A channel
+    with one value in every row carries no measurement (a UserError naming it)."""
+    if len(values) and float(np.ptp(values)) == 0.0:
+        name = "torque_Nm" if values is data.torque_Nm else "drum_temp_C" if values is data.drum_temp_C else "a column"
+        raise UserError(f"{data.source}, column '{name}': {float(values[0]):g} in every row — nothing was measured; "
+                        f"check that the column holds the bench's {'torque' if name == 'torque_Nm' else 'readings'} "
+                        f"(or the column map of the log)")
     raw = raw_rate_noise(data, values)
     if raw is not None:
         return raw

@@ -26,7 +26,7 @@ from __future__ import annotations
 import hashlib
 import json
 import math
-from dataclasses import dataclass
+from dataclasses import dataclass, field
 from pathlib import Path
 
 import numpy as np
@@ -58,18 +58,23 @@ class SweepSpec:
     simulate: str = "band"
     band: tuple[float, float] = DEFAULT_BAND
     description: str = ""
+    layout: tuple | None = field(default=None, repr=False, compare=False)   # expand()'s arguments after the base
 
     @property
     def name(self) -> str:
         return Path(self.source).stem
 
     def with_model(self, model) -> "SweepSpec":
-        """The same sweep on another drum model (its parameter set and effects; the base keeps its T_0)."""
+        """The same sweep on another drum model (its parameter set and effects; the base keeps its T_0): the axes
+        the sweep does not set (μ_d, μ_r, …) take the model's values, as they took the base's."""
         import dataclasses
         p = model.params.replace(initial_drum_temp_C=self.base.initial_drum_temp_C)
         base = dataclasses.replace(self.base, params=p, model=model.with_params(p))
-        points = self.points.copy()
-        points["point_id"] = point_ids(base, points)
+        if self.layout is not None:
+            points = expand(base, *self.layout)
+        else:
+            points = self.points.copy()
+            points["point_id"] = point_ids(base, points)
         return dataclasses.replace(self, base=base, points=points)
 
 
@@ -318,7 +323,8 @@ def spec_from_mapping(data: dict, where: str, base_dir: Path) -> SweepSpec:
     if pts is not None and len(pts) > MAX_POINTS:
         raise UserError(f"{where}: {len(pts)} [[points]] blocks (max {MAX_POINTS}); split the sweep")
     df = expand(base, grid, pts, preset_dirs, where)
-    return SweepSpec(source=where, base=base, points=df, simulate=mode, band=band, description=desc)
+    return SweepSpec(source=where, base=base, points=df, simulate=mode, band=band, description=desc,
+                     layout=(grid, pts, preset_dirs, where))
 
 
 def load_sweep(path: str | Path) -> SweepSpec:
@@ -334,4 +340,5 @@ def grid_spec(base: Scenario, grid: dict[str, list], *, simulate: str = "band",
     _check_keys(grid, AXES, f"{source} grid")
     values = {a: _axis_values(a, v, f"{source} grid axis '{a}'") for a, v in grid.items()}
     return SweepSpec(source=source, base=base, points=expand(base, values, where=source), band=band,
+                     layout=(values, None, None, source),
                      simulate=check_choice(simulate, SIMULATE_MODES, "simulate mode"))
