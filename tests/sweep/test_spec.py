@@ -2,6 +2,7 @@
 from pathlib import Path
 
 import numpy as np
+import pandas as pd
 import pytest
 
 from rollaway.errors import UserError
@@ -157,3 +158,17 @@ def test_a_sweep_on_a_model_takes_the_axes_it_does_not_set_from_the_model(tmp_pa
     assert sorted(set(s.points["mu_drum"])) == [0.3, 0.4] and np.allclose(s.points["tyre_road_mu"], 0.7)
     res = rollaway.sweep(f, tmp_path / "out", model=model, plots=False)
     assert sorted(set(res.table["mu_drum"])) == [0.3, 0.4]
+
+
+def test_a_self_locking_point_is_said_so_and_claims_no_agreement(tmp_path):
+    """A point where the leading shoe self-locks (μ_d = 1.5 facing downhill, eqs. 18–21) is outside the 1D model:
+    its row says why and counts neither as agreeing nor as a tyre skid."""
+    import rollaway
+    f = tmp_path / "s.toml"
+    f.write_text('base_preset = "fmvss135"\nsimulate = "none"\n[grid]\nmu_drum = [0.4, 1.5]\n')
+    t = rollaway.sweep(f, tmp_path / "out", plots=False).table
+    row = t[(t["mu_drum"] == 1.5) & (t["direction"] == "downhill")].iloc[0]
+    assert row["analytic_outcome"] == "self_locking" and row["verdict"] != "hold"
+    assert "self-locks" in row["disagreement"] and "tyres" not in row["disagreement"]
+    assert row["agree"] is pd.NA
+    assert t[t["mu_drum"] == 0.4]["agree"].all()

@@ -106,7 +106,8 @@ def build_table(analytic: pd.DataFrame, records: dict[str, dict], analytic_wall_
     df["rollaway_time_s"] = np.where(simulated, df["sim_rollaway_time_s"].to_numpy(float),
                                      df["analytic_rollaway_time_s"].to_numpy(float))
     paper_code = label_codes(df["paper_verdict"], ["", "hold", "roll"])
-    known = v_code != 0
+    locked = df["analytic_outcome"].to_numpy(object) == "self_locking"
+    known = (v_code != 0) & ~locked      # a self-locking shoe is outside the 1D model: neither side has a verdict
     same = paper_code == v_code
     df["agree"] = pd.arrays.BooleanArray(same & known, mask=~known)
     differ = known & ~same
@@ -118,6 +119,8 @@ def build_table(analytic: pd.DataFrame, records: dict[str, dict], analytic_wall_
                        + " < 1; not simulated): the paper's 1D check ignores tyres")
     for i in np.flatnonzero(differ & simulated):
         text[i] = explain(df.iloc[i])
+    text[locked] = ("the leading shoe self-locks (l_f − μ_d·l_fr ≤ 0, eqs. 18–21): the 1D model has no finite "
+                    "torque there, so no hold is claimed")
     df["disagreement"] = text
     wall = np.full(n, analytic_wall_s / max(n, 1))
     if has.any():
