@@ -145,3 +145,16 @@ def test_an_untested_direction_draws_the_gap_that_the_tested_one_cannot_see():
         assert new["p50"] < old["p50"] - 0.01, (seed, new, old)
         new, old = bands("downhill")
         assert new == old
+
+
+def test_a_level_road_needs_no_torque_and_warns_of_nothing():
+    """On a 0 % grade no brake torque is required: every margin is infinite, the car holds in every draw, and the
+    band's spread and shares are computed without a numpy warning."""
+    import warnings
+    a, b = creep(0.10, 0.01), creep(0.20, 0.01)
+    a._alternatives = [(0.5, b)]
+    a.predictive = {"model_error_rel_sd": 0.01, "model_error_dof": 50}
+    with warnings.catch_warnings():
+        warnings.simplefilter("error", RuntimeWarning)
+        risk = rollaway_risk(a, hand_force_N=150.0, draws=400, seed=3, **{**CASE, "grade_pct": 0.0})
+    assert risk.rollaway_probability == 0.0 and risk.detail["half_width"] == 0.0 and risk.detail["shares"] == {}

@@ -192,7 +192,13 @@ def own_record(pred: dict, part: DrumModel) -> dict:
 
 
 def _half_width(x: np.ndarray) -> float:
-    return 0.5 * float(np.percentile(x, 95) - np.percentile(x, 5)) if x.size else 0.0
+    """Half the 5–95 % spread of *x*; inf where the upper end is infinite (no torque required), 0 where both are."""
+    if not x.size:
+        return 0.0
+    if np.all(np.isfinite(x)):
+        return 0.5 * float(np.percentile(x, 95) - np.percentile(x, 5))
+    lo, hi = (float(np.percentile(x, q, method="inverted_cdf")) for q in (5, 95))
+    return 0.0 if lo == hi else 0.5 * (hi - lo) if np.isfinite(hi) else float("inf")
 
 
 def rollaway_risk(model: DrumModel, *, hand_force_N: float, grade_pct: float, direction: str, occupants: int,
@@ -260,10 +266,12 @@ def rollaway_risk(model: DrumModel, *, hand_force_N: float, grade_pct: float, di
                                                                                       method="inverted_cdf"))
           for q in PERCENTILES}
     no_eps = brake / (1.0 + eps)                  # the margin scales with the torque: ε divides out exactly
-    # law of total variance over the effect sets: within (parameters) + between (choice of effects)
+    # law of total variance over the effect sets: within (parameters) + between (choice of effects); none where a
+    # margin is infinite (no torque required: a level road)
     groups = [no_eps[owner == k] for k in range(len(parts)) if counts[k] > 0]
-    v_par = sum(g.size * float(np.var(g)) for g in groups) / draws
-    v_mix, v_all = float(np.var(no_eps)), float(np.var(brake))
+    finite = bool(np.all(np.isfinite(brake)))
+    v_par = sum(g.size * float(np.var(g)) for g in groups) / draws if finite else 0.0
+    v_mix, v_all = (float(np.var(no_eps)), float(np.var(brake))) if finite else (0.0, 0.0)
     total = max(v_all, 1e-300)
     shares = {"parameters": min(v_par / total, 1.0), "choice_of_effects": max(v_mix - v_par, 0.0) / total,
               "model_error": max(v_all - v_mix, 0.0) / total} if v_all > 0 else {}
