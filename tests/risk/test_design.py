@@ -56,3 +56,17 @@ def test_a_varied_input_is_designed_by_its_nominal_value(write_population):
         "hand_force_N", 250.0)
     d = design(pop, "mu_drum", 0.02, samples=200_000, seed=0)
     assert d.side == "least" and abs(d.value - (mu_threshold(250.0) + 0.15 - 0.3 * 0.02)) < 1e-3
+
+
+def test_occupants_are_designed_in_whole_numbers(write_population):
+    """The number of occupants is searched over 0–5, never a fraction: the greatest load whose rate meets the target,
+    each whole number's rate on the curve, and the rate grows with the load (more weight, more torque needed)."""
+    head = ('grade_pct = 30\ndirection = "uphill"\noccupants = 5\nhand_force_N = 360\nduration_s = 300\n'
+            'initial_drum_temp_C = 200\n')
+    pop = load_population(write_population("[vary]\nmu_drum = { uniform = [0.2, 0.5] }\n", head=head))
+    d = design(pop, "occupants", 0.2, samples=20_000)
+    assert d.side == "greatest" and d.value == int(d.value) and 0 <= d.value <= 5
+    assert [v for v, _ in d.curve] == [0.0, 1.0, 2.0, 3.0, 4.0, 5.0]
+    rates = [p for _, p in d.curve]
+    assert rates == sorted(rates) and rates[0] < rates[-1] and d.probability <= 0.2
+    assert 0 < d.value < 5 and rates[int(d.value) + 1] > 0.2

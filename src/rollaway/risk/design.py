@@ -28,6 +28,7 @@ from rollaway.risk.population import RANGES, Population
 MC_FAILURES = 100            # expected failures at the target from which plain MC with common numbers is used
 CURVE_POINTS = 25
 MAX_MC_CARS = 1_000_000      # cars of the common-random-number sample (the memory of one evaluation)
+WHOLE = ("occupants",)       # inputs that take whole numbers: searched value by value
 
 
 @dataclass(frozen=True)
@@ -67,12 +68,12 @@ def _setter(population: Population, name: str):
         m = population.marginal(name)
         now = m.median()
         lo, hi = RANGES[name]
-        if now > 0:
+        if now > 0 and name not in WHOLE:
             lo, hi = max(lo, now / 4.0), min(hi, now * 4.0)
         return (lambda v: population.with_marginal(m.shifted_to(v))), (lo, hi), now
     now = population.fixed(name)
     lo, hi = RANGES[name]
-    if now > 0:
+    if now > 0 and name not in WHOLE:
         lo, hi = max(lo, now / 4.0), min(hi, now * 4.0)
     return (lambda v: population.with_fixed(name, v)), (lo, hi), now
 
@@ -114,6 +115,8 @@ def design(population: Population, name: str, target: float, samples: int = 1_00
         def rate(v):
             e = importance_sampling(make(v), samples, seed)
             return e.total.probability, e.total.ci95
+    if name in WHOLE:
+        return _whole_design(name, target, rate, range(math.ceil(lo), math.floor(hi) + 1), method, n)
     r_lo, r_hi = rate(lo)[0], rate(hi)[0]
     side = "least" if r_hi <= r_lo else "greatest"
     good, bad = (hi, lo) if side == "least" else (lo, hi)
@@ -136,6 +139,22 @@ def design(population: Population, name: str, target: float, samples: int = 1_00
     width = max(abs(value) * 0.25, (hi - lo) / 20)
     grid = np.linspace(max(lo, value - width), min(hi, value + width), CURVE_POINTS if crn else CURVE_POINTS // 2)
     curve = [(float(v), float(rate(v)[0])) for v in grid]
+    return Design(name, float(value), float(p), (float(ci[0]), float(ci[1])), float(target), side, curve, method, n)
+
+
+def _whole_design(name: str, target: float, rate, values, method: str, n: int) -> Design:
+    """:func:`design` for an input of whole numbers (:data:`WHOLE`): the rate at every value, the safe end the one
+    of lower rate, the value furthest from it that still meets *target*."""
+    est = {v: rate(float(v)) for v in values}
+    curve = [(float(v), float(p)) for v, (p, _) in est.items()]
+    first, last = curve[0][1], curve[-1][1]
+    side = "least" if last <= first else "greatest"
+    ok = [v for v, (p, _) in est.items() if p <= target]
+    if not ok:
+        raise UserError(f"--design {name}: no value from {min(est)} to {max(est)} keeps the rate ≤ {target:g} (the "
+                        f"best gives {min(p for p, _ in est.values()):.3g}); the target needs more than this input")
+    value = min(ok) if side == "least" else max(ok)
+    p, ci = est[value]
     return Design(name, float(value), float(p), (float(ci[0]), float(ci[1])), float(target), side, curve, method, n)
 
 
