@@ -70,3 +70,9 @@ def test_occupants_are_designed_in_whole_numbers(write_population):
     rates = [p for _, p in d.curve]
     assert rates == sorted(rates) and rates[0] < rates[-1] and d.probability <= 0.2
     assert 0 < d.value < 5 and rates[int(d.value) + 1] > 0.2
+
+
+def test_a_design_on_a_population_that_varies_nothing_says_so(write_population):
+    pop = load_population(write_population(""))
+    with pytest.raises(UserError, match="varies nothing"):
+        design(pop, "hand_force_N", 1e-5, samples=10_000)

@@ -95,6 +95,10 @@ def design(population: Population, name: str, target: float, samples: int = 1_00
     """Least or greatest value of *name* whose roll-away rate is ≤ *target* (module docstring)."""
     if not (isinstance(target, (int, float)) and 0 < target < 1):
         raise UserError(f"--target {target!r} must be a probability between 0 and 1, e.g. 1e-4 (100 ppm)")
+    m = population.model
+    if population.dim == 0 and m.covariance is None and not m.predictive and not m.alternatives:
+        raise UserError(f"--design {name}: the population varies nothing (no [vary] table) and its model has no "
+                        f"scatter of its own, so its rate is 0 or 1; add the inputs that scatter in production, or use 'rollaway hold' for the one car")
     make, (lo, hi), _ = _setter(population, name)
     n = int(min(samples, MAX_MC_CARS))
     rng = np.random.default_rng(seed)
