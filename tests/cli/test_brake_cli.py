@@ -78,3 +78,11 @@ def test_brake_csv_matches_independent_reference(run_cli, force, direction, gap_
     for g, r in zip(got, ref, strict=True):
         for col in ("time_s", "drum_temp_C", "normal_force_N", "torque_Nm"):
             assert float(g[col]) == pytest.approx(float(r[col]), rel=1e-6, abs=1e-9), col
+
+
+def test_the_series_ends_at_t_end_where_the_steps_do_not_land_on_it():
+    from rollaway.cli.brake import time_grid_s
+    assert list(time_grid_s(1.0, 600.0)) == [0.0, 1.0]
+    assert list(time_grid_s(1000.0, 600.0)) == [0.0, 600.0, 1000.0]
+    assert list(time_grid_s(3600.0, 600.0)) == [0.0, 600.0, 1200.0, 1800.0, 2400.0, 3000.0, 3600.0]
+    assert list(time_grid_s(0.0, 600.0)) == [0.0]

@@ -22,7 +22,8 @@ def load_cli_model(params, overrides=()):
 
 
 def time_grid_s(t_end_s: float, dt_s: float, flag: str = "--t-end-s") -> np.ndarray:
-    """Print times 0, dt, … t_end; *flag* names the option that gave t_end in an error."""
+    """Print times 0, dt, … and t_end itself where the steps do not land on it; *flag* names the option that gave
+    t_end in an error."""
     if not np.isfinite(t_end_s) or t_end_s < 0:
         raise UserError(f"{flag} {t_end_s:g} must be ≥ 0 seconds, e.g. 3600 for one hour")
     if not np.isfinite(dt_s) or dt_s <= 0:
@@ -31,7 +32,8 @@ def time_grid_s(t_end_s: float, dt_s: float, flag: str = "--t-end-s") -> np.ndar
     n = int(rows) if np.isfinite(rows) else 10_000_001
     if n > 10_000_000:
         raise UserError(f"{flag}/--dt-s gives {n} rows; use a larger --dt-s")
-    return np.arange(n + 1) * dt_s
+    t = np.arange(n + 1) * dt_s
+    return t if t_end_s - t[-1] <= 1e-9 * max(t_end_s, 1.0) else np.append(t, t_end_s)
 
 
 def brake(
