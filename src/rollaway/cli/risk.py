@@ -13,7 +13,9 @@ def risk(
     population: str = typer.Argument(..., metavar="POPULATION_TOML",
                                      help="population file: a scenario's fixed values + [vary] (scenarios/populations/)"),
     json_out: bool = typer.Option(False, "--json", help="print the result as JSON"),
-    samples: int = typer.Option(1_000_000, "--samples", metavar="N", help="cars the estimate may evaluate at most"),
+    samples: int = typer.Option(1_000_000, "--samples", metavar="N", help="cars the estimate may evaluate at most (importance sampling "
+                                 "takes its design-point search and one chunk of 10 000 beyond that; the number "
+                                 "evaluated is reported)"),
     method: str = typer.Option("auto", "--method", metavar="METHOD",
                                help="auto | mc | is | subset | form (auto: a pilot Monte Carlo run decides)"),
     design: Optional[str] = typer.Option(None, "--design", metavar="NAME",
