@@ -2,7 +2,8 @@
 import numpy as np
 import pytest
 
-from rollaway.effects import CATALOGUE, get_effect
+from rollaway.effects import CATALOGUE, Effect, get_effect
+from rollaway.effects.base import EffectParameter
 from rollaway.identify import fitting
 from rollaway.identify.calibrate import calibrate
 from rollaway.identify.fitting import Problem, stack_copies
@@ -21,8 +22,11 @@ def _fit(data, effects, stacked: bool, monkeypatch):
     (1, ["cable_exponential"], ["cable_relaxation"]),
     (2, ["creep_power_law"], ["lining_creep", "shoe_thermal_lag"]),
     (3, ["zero_offset", "friction_linear"], ["torque_zero_offset", "friction_temperature"]),   # two families
+    (4, ["radiation"], ["radiation_cooling"]),                           # a tabled cooling law, h and ε columns
 ])
 def test_stacked_fit_is_bit_identical_to_one_call_per_set(seed, hidden, effects, monkeypatch):
+    """Stacked: the per-test families' steps and the Jacobian's difference quotients of the globals (each copy its
+    own global values) are evaluated side by side; the fit is the one of one model call per value set."""
     data = generate(hidden, sampling="5min", seed=seed, n_forces=3)
     a, b = (_fit(data, effects, s, monkeypatch) for s in (True, False))
     assert a.values.keys() == b.values.keys()
@@ -38,10 +42,19 @@ def test_stacked_copies_are_tests_of_their_own():
     assert np.array_equal(s.test_index[len(data):2 * len(data)], data.test_index + data.n_tests)
 
 
-@pytest.mark.parametrize("effects,stacks", [(["lining_creep"], True), (["radiation_cooling"], False),
-                                            (["lining_creep", "radiation_cooling"], False)])
+class _Pooled(Effect):
+    """A torque change read from a reduction over all samples: not elementwise (the default)."""
+    name = "pooled_test_effect"
+    parameters = (EffectParameter("k", "–", neutral=0.0, lower=-1.0, upper=1.0, initial=0.1),)
+
+    def torque(self, state, torque_Nm, v):
+        return torque_Nm * (1.0 + v["k"] * np.mean(state.time_s) / 3600.0)
+
+
+@pytest.mark.parametrize("effects,stacks", [(["lining_creep"], True), (["radiation_cooling"], True),
+                                            (["lining_creep", _Pooled()], False)])
 def test_only_elementwise_effects_are_stacked(effects, stacks):
-    """Radiation cooling tabulates its law over all samples of one ambient: copies would share the table."""
+    """An effect that reads other samples (a mean over them) would see the other copies: it is not stacked."""
     data = generate([], sampling="15min", seed=5, n_forces=2)
     model = BenchModel(effects=effects)
     values = {**model.initial_values(), "initial_temp_C": data.test_initial_temp_C.copy()}
@@ -52,8 +65,8 @@ def test_only_elementwise_effects_are_stacked(effects, stacks):
 
 @pytest.mark.parametrize("name", [n for n, e in CATALOGUE.items() if e.elementwise])
 def test_an_elementwise_effect_gives_each_copy_its_own_numbers(name):
-    """What ``elementwise = True`` promises: the model on stacked copies (other T_0 per copy) equals the
-    model on each copy alone, bit for bit, at the effect's typical values."""
+    """What ``elementwise = True`` promises: the model on stacked copies (other T_0, μ_d and effect values per
+    copy, given per test) equals the model on each copy alone, bit for bit, at the effect's typical values."""
     data = generate(["creep_exponential"], sampling="15min", seed=6, n_forces=2)
     effect = get_effect(name)
     model = BenchModel(effects=[name])
@@ -63,7 +76,12 @@ def test_an_elementwise_effect_gives_each_copy_its_own_numbers(name):
         if p.per_test:
             values[f"{name}.{p.name}"] = np.linspace(-1.0, 1.0, data.n_tests) * effect.typical_values()[p.name]
     sets = [dict(values, initial_temp_C=data.test_initial_temp_C + dt) for dt in (0.0, 0.5, -3.0)]
-    stacked = {k: (np.concatenate([s[k] for s in sets]) if np.ndim(v) == 1 else v) for k, v in sets[0].items()}
+    for k, p in ((f"{name}.{p.name}", p) for p in effect.parameters if not p.per_test):   # globals per copy too
+        sets[1][k] = values[k] + 0.25 * (p.upper - values[k])
+    sets[2]["mu_drum"] = values["mu_drum"] * 1.1
+    stacked = {k: (np.concatenate([s[k] for s in sets]) if np.ndim(v) == 1 else
+                   np.repeat([float(s[k]) for s in sets], data.n_tests) if np.ndim(v) == 0 and v is not None
+                   and any(s[k] != v for s in sets) else v) for k, v in sets[0].items()}
     both = model.predict(stack_copies(data, 3), stacked)
     for channel in ("drum_temp_C", "lining_temp_C", "torque_Nm"):
         alone = np.concatenate([getattr(model.predict(data, s), channel) for s in sets])

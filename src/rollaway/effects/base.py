@@ -128,9 +128,10 @@ class Effect:
     # the parameter whose neutral value switches the effect off whatever the others are (e.g. a lost
     # fraction, not its time constant); "" = the effect is neutral only when every parameter is
     amplitude: ClassVar[str] = ""
-    # True when every hook computes each sample from that sample's inputs alone (no test ids, no
-    # reductions or tables over samples): a fit may then evaluate several parameter sets in one call
-    # on stacked copies of the data (same numbers, less per-call overhead).  False (the default) is safe.
+    # True when every hook computes each sample from that sample's inputs and values alone (no test ids, no
+    # reductions over samples, no table whose grid depends on other samples), values given per sample
+    # included: a fit may then evaluate several parameter sets in one call on stacked copies of the data
+    # (same numbers, less per-call overhead).  False (the default) is safe.
     elementwise: ClassVar[bool] = False
 
     # -- bookkeeping -----------------------------------------------------------------

@@ -80,7 +80,8 @@ class Problem:
         self.step = {f: 1e-4 * (model.bounds(f)[1] - model.bounds(f)[0]) for f in self.families}
         batch = self.families and all(e.elementwise for e in model.effects) and not ambient_varies(data)
         self.stacked = stack_copies(data, len(self.families) + 1) if batch else None
-        self._tiled = None       # the weights tiled like self.stacked
+        self._copies = {len(self.families) + 1: self.stacked} if batch else {}   # stacked data by copies
+        self._tiled = {}         # the weights tiled like the stacked data, by copies
 
     def raw(self, vals: dict) -> np.ndarray:
         self.nfev += 1
@@ -91,16 +92,27 @@ class Problem:
         return np.where(np.isfinite(r), r, 1e6)
 
     def raw_stacked(self, sets: list[dict]) -> list[np.ndarray]:
-        """:meth:`raw` of several value sets that differ only in per-test arrays, in one evaluation of the
-        model on stacked copies of the data (each copy its own tests); elementwise, so the same numbers."""
+        """:meth:`raw` of several value sets in one evaluation of the model on stacked copies of the data (each
+        copy its own tests; a global that differs between the sets is given per test); elementwise, so the same
+        numbers."""
         self.nfev += len(sets)
-        data, c = self.stacked, len(sets)
-        vals = {k: (np.concatenate([s[k] for s in sets]) if isinstance(x, np.ndarray) and x.ndim == 1 else x)
-                for k, x in sets[0].items()}
+        c = len(sets)
+        data = self._copies.get(c)
+        if data is None:
+            data = self._copies[c] = stack_copies(self.data, c)
+        nt = self.data.n_tests
+        vals = {}
+        for k, x in sets[0].items():
+            if isinstance(x, np.ndarray) and x.ndim == 1:
+                vals[k] = np.concatenate([s[k] for s in sets])
+            elif x is not None and np.ndim(x) == 0 and any(s[k] != x for s in sets[1:]):
+                vals[k] = np.repeat(np.array([float(s[k]) for s in sets]), nt)     # per test of the stack
+            else:
+                vals[k] = x
         p = self.model.predict(data, vals)
-        if self._tiled is None:
-            self._tiled = tuple(np.tile(a, c) if a.ndim else a for a in (self.w_temp, self.w_torque))
-        w_t, w_q = self._tiled
+        if c not in self._tiled:
+            self._tiled[c] = tuple(np.tile(a, c) if a.ndim else a for a in (self.w_temp, self.w_torque))
+        w_t, w_q = self._tiled[c]
         with np.errstate(invalid="ignore"):
             r = np.concatenate([((p.drum_temp_C - data.drum_temp_C) * w_t).reshape(c, -1),
                                 ((p.torque_Nm - data.torque_Nm) * w_q).reshape(c, -1)], axis=1)
@@ -110,11 +122,29 @@ class Problem:
         """Residual with the per-test families at their best values (one Gauss–Newton step)."""
         if not self.families:
             return self.raw(vals), {}, [], None
-        sets = [vals] + [{**vals, f: vals[f] + self.step[f]} for f in self.families]
+        sets = self._family_sets(vals)
         if self.stacked is not None and all(np.ndim(vals[f]) == 1 for f in self.families):
             rs = self.raw_stacked(sets)
         else:
             rs = [self.raw(v) for v in sets]
+        return self._project(vals, rs)
+
+    def _family_sets(self, vals: dict) -> list[dict]:
+        """*vals*, then *vals* with each per-test family stepped (every test at once)."""
+        return [vals] + [{**vals, f: vals[f] + self.step[f]} for f in self.families]
+
+    def profiles(self, many: list[dict]) -> list[np.ndarray]:
+        """``[self.profile(v)[0] for v in many]``, the model evaluated once for all of them on stacked copies
+        where it can be (the same numbers: elementwise): a finite-difference Jacobian's columns in one call."""
+        if (self.stacked is None or len(many) < 2 or not self.families
+                or not all(np.ndim(v[f]) == 1 for v in many for f in self.families)):
+            return [self.profile(v)[0] for v in many]
+        k = len(self.families) + 1
+        rs = self.raw_stacked([s for v in many for s in self._family_sets(v)])
+        return [self._project(v, rs[i * k:(i + 1) * k])[0] for i, v in enumerate(many)]
+
+    def _project(self, vals: dict, rs: list[np.ndarray]):
+        """The projected residual of :meth:`profile` from the residuals *rs* of :meth:`_family_sets` (*vals*)."""
         r0 = rs[0]
         grads = [(r - r0) / self.step[f] for r, f in zip(rs[1:], self.families)]
         gm = np.stack(grads, axis=1)                       # rows × m
@@ -180,9 +210,18 @@ class Problem:
                 v.update(zip(names, to_x(zz)))
                 return self.profile(v)[0]
 
+            def columns(_fun, zs):        # the difference quotients' evaluations, side by side
+                out = []
+                for zz in zs:
+                    v = dict(fixed)
+                    v.update(zip(names, to_x(zz)))
+                    out.append(v)
+                return self.profiles(out)
+
             if names:
                 res = optimize.least_squares(fun, z, method="lm", xtol=tol, ftol=tol, gtol=tol,
-                                             x_scale=1.0, max_nfev=max_iterations * (len(names) + 1))
+                                             x_scale=1.0, max_nfev=max_iterations * (len(names) + 1),
+                                             workers=columns if self.stacked is not None else None)
                 z = res.x
                 vals.update(zip(names, to_x(z)))
             r_lin, step, _, _ = self.profile(vals)
@@ -203,11 +242,11 @@ class Problem:
     def projected_jacobian(self, vals, r0, lo, hi, scale) -> np.ndarray:
         """∂(projected residual)/∂(x/scale) by forward differences, stepping inwards at a bound."""
         jac = np.empty((r0.size, len(self.names)))
-        for i, n in enumerate(self.names):
-            h = 1e-6 * scale[i]
-            if vals[n] + h > hi[i]:
-                h = -h
-            jac[:, i] = (self.profile({**vals, n: vals[n] + h})[0] - r0) / h * scale[i]
+        steps = [(-1.0 if vals[n] + 1e-6 * scale[i] > hi[i] else 1.0) * 1e-6 * scale[i]
+                 for i, n in enumerate(self.names)]
+        moved = self.profiles([{**vals, n: vals[n] + h} for n, h in zip(self.names, steps)])
+        for i, (r, h) in enumerate(zip(moved, steps)):
+            jac[:, i] = (r - r0) / h * scale[i]
         return jac
 
 

@@ -29,6 +29,7 @@ from rollaway.physics import cooling
 
 INITIAL_TEMP = "initial_temp_C"          # per-test nuisance: each test's T_0 [°C]
 INITIAL_TEMP_BOUNDS = (-60.0, 1000.0)
+KEPT_TEMPERATURES = 4                    # drum temperatures a BenchModel keeps (:meth:`BenchModel.predict`)
 
 
 @dataclass(frozen=True)
@@ -121,7 +122,7 @@ class BenchModel:
             v = {}
             for p in e.parameters:
                 x = values.get(f"{e.name}.{p.name}", p.neutral)
-                v[p.name] = (per_sample(x, data) if p.per_test and data is not None else float(x))
+                v[p.name] = _number(x, data) if data is not None else float(x)
             if not e.is_neutral(v):
                 out.append((e, v))
         return out
@@ -133,19 +134,18 @@ class BenchModel:
 
     def _effect_values(self, values: dict, data: Measurements) -> dict:
         """Effect values for the chain (per-test ones expanded to every sample) and the brake overrides."""
-        out = {k: float(values[k]) for k in CHAIN_OVERRIDES if k in values and k in self.free}
+        out = {k: _number(values[k], data) for k in CHAIN_OVERRIDES if k in values and k in self.free}
         for e in self.effects:
             for p in e.parameters:
                 key = f"{e.name}.{p.name}"
-                x = values.get(key, p.neutral)
-                out[key] = per_sample(x, data) if p.per_test else float(x)
+                out[key] = _number(values.get(key, p.neutral), data)
         return out
 
     def _inputs(self, data: Measurements, values: dict) -> dict:
-        amb = float(values.get("ambient_temp_C", self.params.ambient_temp_C)) if data.ambient_C is None \
+        amb = _number(values.get("ambient_temp_C", self.params.ambient_temp_C), data) if data.ambient_C is None \
             else data.ambient_C
         t0 = data.initial_temp_C if values.get(INITIAL_TEMP) is None else per_sample(values[INITIAL_TEMP], data)
-        return dict(initial_temp_C=t0, ambient_C=amb, heat_transfer_W_m2K=float(values["heat_transfer_W_m2K"]),
+        return dict(initial_temp_C=t0, ambient_C=amb, heat_transfer_W_m2K=_number(values["heat_transfer_W_m2K"], data),
                     test_index=data.test_index, test_ids=data.tests)
 
     def drum_temperature(self, data: Measurements, values: dict | None = None,
@@ -168,12 +168,39 @@ class BenchModel:
                 drum_temp_C: np.ndarray | None = None) -> Prediction:
         """Both channels for every sample; *drum_temp_C* reuses a temperature already computed."""
         values = {**self.neutral_values(), **(values or {})}
-        if drum_temp_C is None and ambient_varies(data):
-            drum_temp_C = self.drum_temperature(data, values)
-        s = self.drum.evaluate(data.time_s, data.hand_force_N, data.sign, mu_drum=float(values["mu_drum"]),
+        if drum_temp_C is None and (ambient_varies(data) or self._temperature_effects()):
+            drum_temp_C = self._kept_temperature(data, values)
+        s = self.drum.evaluate(data.time_s, data.hand_force_N, data.sign, mu_drum=_number(values["mu_drum"], data),
                                values=self._effect_values(values, data), drum_temp_C=drum_temp_C,
                                **self._inputs(data, values))
         return Prediction(s.drum_temp_C, s.lining_temp_C, s.normal_force_N, s.torque_Nm)
+
+    def _temperature_effects(self) -> list[Effect]:
+        """The effects whose hooks change the drum temperature."""
+        if getattr(self, "_temp_effects", None) is None:
+            self._temp_effects = [e for e in self.effects if e.touches_temperature()]
+        return self._temp_effects
+
+    def _kept_temperature(self, data: Measurements, values: dict) -> np.ndarray:
+        """:meth:`drum_temperature`, the last :data:`KEPT_TEMPERATURES` answers kept per data set: the torque
+        channel's parameters (μ_d, the torque effects', most of a fit's Jacobian columns) leave the temperature
+        unchanged, and a radiating drum or a logged ambient makes it the costly part of a prediction.  The key is
+        every value the temperature reads: T_0, h, the ambient and the temperature effects' parameters (the other
+        chain overrides act on the torque only).  The answer is read-only."""
+        parts = [values.get(INITIAL_TEMP), values.get("heat_transfer_W_m2K"), values.get("ambient_temp_C")]
+        parts += [values.get(f"{e.name}.{p.name}", p.neutral) for e in self._temperature_effects()
+                  for p in e.parameters]
+        key = tuple((None if x is None else (np.shape(x), np.asarray(x, float).tobytes())) for x in parts)
+        kept = self.__dict__.setdefault("_kept", [])
+        for i, (d, k, temp) in enumerate(kept):
+            if d is data and k == key:
+                kept.insert(0, kept.pop(i))
+                return temp
+        temp = np.array(self.drum_temperature(data, values), float)
+        temp.flags.writeable = False
+        kept.insert(0, (data, key, temp))
+        del kept[KEPT_TEMPERATURES:]
+        return temp
 
     def drum_model(self, values: dict | None = None, **kw) -> DrumModel:
         """The calibrated :class:`DrumModel` at *values* (μ_d and h go into the parameter set).
@@ -196,6 +223,12 @@ def per_sample(value, data: Measurements) -> np.ndarray | float:
     if a.shape != (data.n_tests,):
         raise ValueError(f"per-test values: {a.shape[0]} given for {data.n_tests} tests")
     return a[data.test_index]
+
+
+def _number(value, data: Measurements) -> np.ndarray | float:
+    """A parameter's value for the chain: one number, or one per test (per-test parameters; globals of several
+    value sets evaluated at once on stacked copies of the data) expanded to every sample."""
+    return float(value) if np.ndim(value) == 0 else per_sample(value, data)
 
 
 def ambient_varies(data: Measurements) -> bool:
