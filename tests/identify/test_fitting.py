@@ -7,7 +7,7 @@ from rollaway.effects.base import EffectParameter
 from rollaway.identify import fitting
 from rollaway.identify.calibrate import calibrate
 from rollaway.identify.fitting import Problem, stack_copies
-from rollaway.identify.model import BenchModel
+from rollaway.identify.model import BenchModel, ambient_varies
 from tests.identify.bench_generator import generate
 
 
@@ -23,11 +23,14 @@ def _fit(data, effects, stacked: bool, monkeypatch):
     (2, ["creep_power_law"], ["lining_creep", "shoe_thermal_lag"]),
     (3, ["zero_offset", "friction_linear"], ["torque_zero_offset", "friction_temperature"]),   # two families
     (4, ["radiation"], ["radiation_cooling"]),                           # a tabled cooling law, h and ε columns
+    (5, ["radiation"], ["radiation_cooling"]),                           # ... towards a logged, drifting ambient
+    (6, ["creep_exponential"], ["lining_creep"]),                        # eq. (10)'s ODE through a logged ambient
 ])
 def test_stacked_fit_is_bit_identical_to_one_call_per_set(seed, hidden, effects, monkeypatch):
     """Stacked: the per-test families' steps and the Jacobian's difference quotients of the globals (each copy its
     own global values) are evaluated side by side; the fit is the one of one model call per value set."""
-    data = generate(hidden, sampling="5min", seed=seed, n_forces=3)
+    data = generate(hidden, sampling="5min", seed=seed, n_forces=3, ambient_drift_C=6.0 if seed >= 5 else 0.0)
+    assert ambient_varies(data) == (seed >= 5)
     a, b = (_fit(data, effects, s, monkeypatch) for s in (True, False))
     assert a.values.keys() == b.values.keys()
     for k in a.values:

@@ -98,26 +98,31 @@ def _tabled_C(time_s, initial_temp_C, ambient_C, heat_transfer_W_m2K, emissivity
     return out.reshape(shape)
 
 
-MAX_RUNS = 256               # more runs of equal keys than this: group by sorting instead
+MAX_RUNS = 256               # more runs of equal keys than this: group by sorting each column instead
 
 
 def _key_groups(keys: np.ndarray) -> list[tuple[np.ndarray, np.ndarray]]:
     """(key row, indices of the samples with that key) for each distinct row of *keys*.  Keys come in runs (a
     parameter set's copy of the data, a test warming instead of cooling): runs are found by comparing neighbours
     and runs with equal keys joined, without the row sort of ``np.unique(axis=0)`` (40× the table's own cost on
-    stacked copies); many runs fall back to that sort."""
+    stacked copies); many runs fall back to sorting each column and then one integer code per row (the same
+    groups, in the order of ``np.unique(axis=0)``)."""
     n = len(keys)
     if n == 0:
         return []
     change = np.flatnonzero(np.any(keys[1:] != keys[:-1], axis=1)) + 1
     if change.size == 0:                                     # one key for all samples
         return [(keys[0], np.arange(n))]
-    if change.size > MAX_RUNS:
-        uniq, inverse = np.unique(keys, axis=0, return_inverse=True)
+    if change.size > MAX_RUNS:            # each column's codes, combined into one integer per row
+        code = np.zeros(n, np.int64)
+        for col in keys.T:
+            _, inv = np.unique(col, return_inverse=True)
+            code = code * (int(inv.max()) + 1) + inv.ravel()
+        first, inverse = np.unique(code, return_index=True, return_inverse=True)[1:]
         inverse = inverse.ravel()
         order = np.argsort(inverse, kind="stable")
-        bounds = np.concatenate([[0], np.cumsum(np.bincount(inverse, minlength=len(uniq)))])
-        return [(u, order[bounds[j]:bounds[j + 1]]) for j, u in enumerate(uniq)]
+        bounds = np.concatenate([[0], np.cumsum(np.bincount(inverse, minlength=len(first)))])
+        return [(keys[f], order[bounds[j]:bounds[j + 1]]) for j, f in enumerate(first)]
     starts, ends = np.concatenate([[0], change]), np.concatenate([change, [n]])
     groups: dict[tuple, list[np.ndarray]] = {}
     for a, b in zip(starts, ends):

@@ -78,7 +78,7 @@ class Problem:
         self.nfev = 0
         self.bounds = {f: model.bounds(f) for f in self.families}
         self.step = {f: 1e-4 * (model.bounds(f)[1] - model.bounds(f)[0]) for f in self.families}
-        batch = self.families and all(e.elementwise for e in model.effects) and not ambient_varies(data)
+        batch = self.families and all(e.elementwise for e in model.effects)
         self.stacked = stack_copies(data, len(self.families) + 1) if batch else None
         self._copies = {len(self.families) + 1: self.stacked} if batch else {}   # stacked data by copies
         self._tiled = {}         # the weights tiled like the stacked data, by copies
@@ -257,5 +257,5 @@ def stack_copies(data: Measurements, copies: int) -> Measurements:
     out = Measurements(test_id=ids, direction=tile(data.direction), hand_force_N=tile(data.hand_force_N),
                        time_s=tile(data.time_s), drum_temp_C=tile(data.drum_temp_C), torque_Nm=tile(data.torque_Nm),
                        ambient_C=tile(data.ambient_C), source=data.source)
-    out._ambient_varies = False
+    out._ambient_varies = ambient_varies(data)      # each copy's tests cool towards their own logged ambient
     return out
