@@ -41,14 +41,15 @@ class Measurements:
     reduction: object | None = None             # rows read/kept/reduced, raw-rate noise (identify.reduction)
 
     def __post_init__(self):
-        self.tests = list(dict.fromkeys(self.test_id.tolist()))
-        index = {t: i for i, t in enumerate(self.tests)}
-        self.test_index = np.array([index[t] for t in self.test_id], dtype=int)
+        import pandas as pd
+        codes, uniques = pd.factorize(np.asarray(self.test_id), sort=False)   # tests in order of appearance
+        self.tests = np.asarray(uniques).tolist()
+        self.test_index = codes.astype(int)
         self.sign = np.where(self.direction == "downhill", 1.0, -1.0)
-        t0 = np.empty(len(self.tests))
-        for i in range(len(self.tests)):
-            rows = np.flatnonzero(self.test_index == i)
-            t0[i] = self.drum_temp_C[rows[np.argmin(self.time_s[rows])]]
+        # each test's reading at its earliest time (the first such row): its T_0
+        order = np.lexsort((self.time_s, self.test_index))
+        first = order[np.r_[0, np.flatnonzero(np.diff(self.test_index[order])) + 1]] if len(order) else order
+        t0 = np.asarray(self.drum_temp_C, float)[first]
         self.test_initial_temp_C = t0
         self.initial_temp_C = t0[self.test_index]
 

@@ -253,7 +253,8 @@ class Problem:
 def stack_copies(data: Measurements, copies: int) -> Measurements:
     """*copies* copies of *data* one after another, each with tests of its own (``"<id>#<copy>"``)."""
     tile = (lambda a: None if a is None else np.tile(a, copies))  # noqa: E731
-    ids = np.array([f"{t}#{c}" for c in range(copies) for t in data.test_id.tolist()])
+    names = np.array([f"{t}#{c}" for c in range(copies) for t in data.tests])
+    ids = names[np.tile(data.test_index, copies) + np.repeat(np.arange(copies) * data.n_tests, len(data))]
     out = Measurements(test_id=ids, direction=tile(data.direction), hand_force_N=tile(data.hand_force_N),
                        time_s=tile(data.time_s), drum_temp_C=tile(data.drum_temp_C), torque_Nm=tile(data.torque_Nm),
                        ambient_C=tile(data.ambient_C), source=data.source)
