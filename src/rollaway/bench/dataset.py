@@ -41,10 +41,13 @@ class Measurements:
     reduction: object | None = None             # rows read/kept/reduced, raw-rate noise (identify.reduction)
 
     def __post_init__(self):
-        import pandas as pd
-        codes, uniques = pd.factorize(np.asarray(self.test_id), sort=False)   # tests in order of appearance
-        self.tests = np.asarray(uniques).tolist()
-        self.test_index = codes.astype(int)
+        ids = np.asarray(self.test_id)
+        uniq, first_row, inverse = np.unique(ids, return_index=True, return_inverse=True)
+        rank = np.argsort(first_row, kind="stable")                  # tests in order of appearance
+        where = np.empty(len(rank), dtype=int)
+        where[rank] = np.arange(len(rank))
+        self.tests = uniq[rank].tolist()
+        self.test_index = where[inverse.ravel()]
         self.sign = np.where(self.direction == "downhill", 1.0, -1.0)
         # each test's reading at its earliest time (the first such row): its T_0
         order = np.lexsort((self.time_s, self.test_index))
