@@ -44,6 +44,7 @@ from rollaway.identify.partner import beside_partial, own_evidence, stood_for
 from rollaway.identify.predictive_set import attach_predictive, interval_words
 from rollaway.identify.shape import (candidate_shapes, channel_alternatives, channel_rivals, loose_form,
                                      other_form_rivals, shape_rivals)
+from rollaway.identify.workers import fit_all
 from rollaway.identify.selection import (BIC_THRESHOLD, SCREEN_ITERATIONS, Candidate, cv_score, eliminate, exchange,
                                          folds, forward_step, has_per_test, per_test_signature, structure)
 from rollaway.uncertainty.bands import validity
@@ -344,15 +345,10 @@ def _same_drum(data, params, base: FitResult, first: list[Candidate]) -> list[Ca
     and its rivals compared with one drum."""
     if tuple(params.free) == tuple(base.model.free):
         return first
-    out = []
-    for c in first:
-        if c.cv_score is None and c.delta_bic >= WEAK_BIC:
-            continue
-        fit = calibrate(data, [c.effect], params, start=c.fit.values)
-        if fit.jacobian is not None:
-            out.append(Candidate(c.effect, fit, fit.bic - base.bic, fit.aic - base.aic, c.cv_score,
-                                 c.cv_better_tests, c.step))
-    return out
+    kept = [c for c in first if c.cv_score is not None or c.delta_bic < WEAK_BIC]
+    fits = fit_all(data, [([c.effect], params, dict(start=c.fit.values)) for c in kept])      # side by side
+    return [Candidate(c.effect, fit, fit.bic - base.bic, fit.aic - base.aic, c.cv_score, c.cv_better_tests, c.step)
+            for c, fit in zip(kept, fits) if fit.jacobian is not None]
 
 
 def _test_offsets(fit: FitResult, nq: Noise) -> bool:

@@ -141,34 +141,43 @@ class Problem:
             return [self.profile(v)[0] for v in many]
         k = len(self.families) + 1
         rs = self.raw_stacked([s for v in many for s in self._family_sets(v)])
-        return [self._project(v, rs[i * k:(i + 1) * k])[0] for i, v in enumerate(many)]
+        return [p[0] for p in self._project_many(many, np.stack(rs).reshape(len(many), k, -1))]
 
     def _project(self, vals: dict, rs: list[np.ndarray]):
         """The projected residual of :meth:`profile` from the residuals *rs* of :meth:`_family_sets` (*vals*)."""
-        r0 = rs[0]
-        grads = [(r - r0) / self.step[f] for r, f in zip(rs[1:], self.families)]
-        gm = np.stack(grads, axis=1)                       # rows × m
-        nt, m = self.data.n_tests, len(self.families)
-        normal = np.zeros((nt, m, m))
-        rhs = np.zeros((nt, m))
+        return self._project_many([vals], np.stack(rs)[None])[0]
+
+    def _project_many(self, many: list[dict], stacked: np.ndarray) -> list[tuple]:
+        """:meth:`_project` of each value set of *many* at once; *stacked*: (sets, m + 1, rows) residuals of their
+        :meth:`_family_sets`.  One Gauss–Newton step per test and set, by bincounts over (set, test)."""
+        n, nt, m = len(many), self.data.n_tests, len(self.families)
+        r0 = stacked[:, 0]                                                      # sets × rows
+        gm = np.stack([(stacked[:, 1 + a] - r0) / self.step[f] for a, f in enumerate(self.families)], axis=2)
+        cell = (np.arange(n)[:, None] * nt + self.rows_test[None, :]).ravel()   # (set, test) of every row
+        normal = np.zeros((n, nt, m, m))
+        rhs = np.zeros((n, nt, m))
         for a in range(m):
-            rhs[:, a] = np.bincount(self.rows_test, gm[:, a] * r0, nt)
+            rhs[..., a] = np.bincount(cell, (gm[..., a] * r0).ravel(), n * nt).reshape(n, nt)
             for b in range(a, m):
-                normal[:, a, b] = normal[:, b, a] = np.bincount(self.rows_test, gm[:, a] * gm[:, b], nt)
+                normal[..., a, b] = normal[..., b, a] = np.bincount(cell, (gm[..., a] * gm[..., b]).ravel(),
+                                                                    n * nt).reshape(n, nt)
         if m == 1:      # the same numbers as the general case below (LAPACK solves 1×1 by one division)
-            a0 = normal[:, 0, 0]
-            d = -(rhs / (a0 + 1e-12 * np.maximum(a0, 1e-300) + 1e-300)[:, None])
+            a0 = normal[..., 0, 0]
+            d = -(rhs / (a0 + 1e-12 * np.maximum(a0, 1e-300) + 1e-300)[..., None])
         else:
-            ridge = 1e-12 * np.maximum(np.trace(normal, axis1=1, axis2=2), 1e-300)[:, None, None] * np.eye(m)
+            ridge = 1e-12 * np.maximum(np.trace(normal, axis1=2, axis2=3), 1e-300)[..., None, None] * np.eye(m)
             d = -np.linalg.solve(normal + ridge + 1e-300 * np.eye(m), rhs[..., None])[..., 0]
-        step = {}
-        for a, f in enumerate(self.families):
-            lo, hi = self.bounds[f]
-            new = np.clip(vals[f] + d[:, a], lo, hi)
-            d[:, a] = new - vals[f]
-            step[f] = new
-        r = r0 + np.einsum("ij,ij->i", gm, d[self.rows_test])
-        return r, step, grads, normal
+        steps = []
+        for i, vals in enumerate(many):
+            step = {}
+            for a, f in enumerate(self.families):
+                lo, hi = self.bounds[f]
+                new = np.clip(vals[f] + d[i, :, a], lo, hi)
+                d[i, :, a] = new - vals[f]
+                step[f] = new
+            steps.append(step)
+        r = r0 + np.einsum("nij,nij->ni", gm, d[:, self.rows_test])
+        return [(r[i], steps[i], [gm[i, :, a] for a in range(m)], normal[i]) for i in range(n)]
 
     def solve(self, start: dict, tol: float | None = None, jacobian: bool = True,
               max_iterations: int = MAX_ITERATIONS) -> Solution:
@@ -250,8 +259,24 @@ class Problem:
         return jac
 
 
+_STACKS: dict = {}           # (id of the data, copies) → (the data, its stacked copies): the fits of one diagnosis
+                             # stack the same data again and again
+
+
 def stack_copies(data: Measurements, copies: int) -> Measurements:
-    """*copies* copies of *data* one after another, each with tests of its own (``"<id>#<copy>"``)."""
+    """*copies* copies of *data* one after another, each with tests of its own (``"<id>#<copy>"``); the last few
+    asked are kept (the copies are only read)."""
+    got = _STACKS.get((id(data), copies))
+    if got is not None and got[0] is data:
+        return got[1]
+    out = _stack(data, copies)
+    if len(_STACKS) >= 32:
+        _STACKS.pop(next(iter(_STACKS)))
+    _STACKS[(id(data), copies)] = (data, out)
+    return out
+
+
+def _stack(data: Measurements, copies: int) -> Measurements:
     tile = (lambda a: None if a is None else np.tile(a, copies))  # noqa: E731
     names = np.array([f"{t}#{c}" for c in range(copies) for t in data.tests])
     ids = names[np.tile(data.test_index, copies) + np.repeat(np.arange(copies) * data.n_tests, len(data))]
