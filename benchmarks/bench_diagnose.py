@@ -4,6 +4,7 @@
     PYTHONPATH=src python benchmarks/bench_diagnose.py                    # 0.1, 1, 10 and 100 Hz
     PYTHONPATH=src python benchmarks/bench_diagnose.py --scaling          # in-process scaling with tests and rows
     PYTHONPATH=src python benchmarks/bench_diagnose.py --held-out         # the slow kinds of set, goal ≤ 5 s
+    PYTHONPATH=src python benchmarks/bench_diagnose.py --stress           # 40 stress sets, goal ≤ 5 s each
 
 Each log is 8 tests of an hour (``rollaway synth``, hidden lining_creep unless ``--effect``) written as a CSV
 under a temporary folder; the CLI runs in a fresh interpreter and its peak resident memory is that process's
@@ -149,13 +150,64 @@ def held_out() -> None:
             print(f"{len(data):>6}{cpu:>8.2f}{wall:>8.2f}{wall / ref:>7.2f}   {name}", flush=True)
 
 
+def stress_sets():
+    """(name, kwargs of ``generate``) of the 40 stress sets: irregular, 1-min, 5-min and 1 Hz sampling; one or two
+    hidden effects (catalogue and other forms); a logged ambient drifting 3–10 K in every fourth; one direction in
+    every fifth; the paper's drum and others; random μ_d and h."""
+    from tests.identify.bench_generator import EFFECTS, OTHER_DRUMS
+    hidden = [k for k, v in EFFECTS.items() if v[0] in ("exact", "other") and k != "zero_offset"]
+    rng = np.random.default_rng(48)
+    drums = [{}] + list(OTHER_DRUMS.values())
+    out = []
+    for j in range(40):
+        sampling = ["irregular", "1min", "5min", "1Hz", "irregular", "1min"][j % 6]
+        effects = list(rng.choice(hidden, 1 + (j % 3 == 0), replace=False))
+        kw = dict(effects=effects, sampling=sampling, seed=4800 + j, drum=drums[rng.integers(len(drums))],
+                  mu=rng.uniform(0.3, 0.45), h=rng.uniform(25, 45))
+        if j % 4 == 1:
+            kw["ambient_drift_C"] = rng.uniform(3, 10)
+        if j % 5 == 2:
+            kw["directions"] = (("downhill",), ("uphill",))[j % 2]
+        if sampling == "1Hz":
+            kw["duration_s"] = 1200.0
+        out.append((f"s{j:02d} {sampling} {'+'.join(effects)}{' drifting ambient' if j % 4 == 1 else ''}", kw))
+    return out
+
+
+def stress() -> None:
+    """Wall seconds of ``rollaway diagnose`` through the CLI on each of :func:`stress_sets`, their mean and the
+    slowest, and the reference unit measured before and after."""
+    from reference import reference_unit_s
+    sys.path.insert(0, str(Path(__file__).resolve().parents[1]))
+    from tests.identify.bench_generator import generate
+    ref = reference_unit_s()
+    print(f"reference unit (300 000 raw mj_step): {ref:.2f} s; goal: ≤ 5 s per set")
+    walls = []
+    with tempfile.TemporaryDirectory() as tmp:
+        for name, kw in stress_sets():
+            data = generate(**kw)
+            path = Path(tmp) / "set.csv"
+            data.to_csv(path)
+            t = time.perf_counter()
+            subprocess.run([sys.executable, "-m", "rollaway", "diagnose", str(path)], stdout=subprocess.DEVNULL,
+                           stderr=subprocess.DEVNULL, env=_env(), check=False)
+            walls.append(time.perf_counter() - t)
+            print(f"{len(data):>6}{walls[-1]:>8.2f} s   {name}", flush=True)
+    print(f"mean {np.mean(walls):.2f} s, slowest {max(walls):.2f} s, over 5 s: {sum(w > 5 for w in walls)}; "
+          f"reference unit before {ref:.2f} s, after {reference_unit_s():.2f} s")
+
+
 def main(argv=None):
     ap = argparse.ArgumentParser(description=__doc__.splitlines()[0])
     ap.add_argument("--rows", type=int, action="append", help="rows of the log (8 tests × 1 h; repeatable)")
     ap.add_argument("--effect", default="lining_creep", help="hidden effect ('' for none)")
     ap.add_argument("--scaling", action="store_true", help="in-process scaling with tests and rows instead")
     ap.add_argument("--held-out", action="store_true", help="the slow kinds of set from the independent generator")
+    ap.add_argument("--stress", action="store_true", help="40 stress sets from the independent generator")
     a = ap.parse_args(argv)
+    if a.stress:
+        stress()
+        return
     if a.held_out:
         held_out()
         return

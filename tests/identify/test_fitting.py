@@ -125,3 +125,26 @@ def test_the_stopping_tolerance_settles_what_the_criteria_and_intervals_read(see
     assert abs(fit.bic - tight.bic) < 0.01
     for name, e in tight.estimates.items():
         assert abs(fit.values[name] - e.value) <= 0.05 * e.stderr, name
+
+
+@pytest.mark.parametrize("base", ["lining_creep", "friction_temperature", "radiation_cooling"])
+def test_a_spline_gives_each_copy_its_own_numbers_with_its_ordinates_per_copy(base):
+    """The flexible forms are elementwise too: ordinates that differ between stacked copies (a Jacobian's columns)
+    give each copy the numbers it has alone."""
+    from rollaway.effects.shape_free import spline_effect
+    data = generate(["creep_exponential"], sampling="15min", seed=7, n_forces=2)
+    flex = spline_effect(get_effect(base), [0.0, 900.0, 1800.0, 3600.0] if base != "friction_temperature"
+                         else [20.0, 120.0, 220.0, 320.0])()
+    model = BenchModel(effects=[flex])
+    values = {**model.initial_values(), "initial_temp_C": data.test_initial_temp_C.copy()}
+    sets = [dict(values) for _ in range(3)]
+    sets[1][f"{flex.name}.c0"], sets[2][f"{flex.name}.c1"] = -0.1, 0.05
+    stacked = {k: (np.concatenate([s[k] for s in sets]) if np.ndim(v) == 1 else
+                   np.repeat([float(s[k]) for s in sets], data.n_tests) if any(s[k] != v for s in sets) else v)
+               for k, v in sets[0].items()}
+    both = model.predict(stack_copies(data, 3), stacked)
+    for channel in ("drum_temp_C", "torque_Nm"):
+        alone = np.concatenate([getattr(model.predict(data, s), channel) for s in sets])
+        assert np.array_equal(getattr(both, channel), alone), channel
+    assert not np.array_equal(both.torque_Nm[:len(data)], both.torque_Nm[len(data):2 * len(data)]) or \
+        not np.array_equal(both.drum_temp_C[:len(data)], both.drum_temp_C[len(data):2 * len(data)])
