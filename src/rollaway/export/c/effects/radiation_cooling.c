@@ -2,10 +2,12 @@
  *   C dT/dt = -h A (T - T_a) - eps sigma A (T_K^4 - T_aK^4)      (Incropera & DeWitt 2007, secs. 1.2.3, 12.3)
  * Separable: with s = ln(T - T_a), t(s) = G(s_0) - G(s), G(s) = integral of (T - T_a) C / q(T) ds.
  * G is tabulated once (radiation_cooling_setup) on the same log grid as the Python code
- * (1500 points, trapezoid rule) and inverted by linear interpolation, so both give the same numbers.
+ * (2000 points over TABLE_SPAN_K, trapezoid rule) and inverted by linear interpolation, so both give the same
+ * numbers.
  * Python: rollaway/effects/radiation_cooling.py */
 /* @members */
-#define RADIATION_GRID 1500               /* points of the table, as n_grid in Python */
+#define RADIATION_GRID 2000               /* points of the table, as n_grid in Python */
+#define RADIATION_SPAN_K 1500.0           /* the table's reach from the ambient, TABLE_SPAN_K in Python */
     double radiation_s[RADIATION_GRID];   /* log grid s = ln(T - T_a) */
     double radiation_g[RADIATION_GRID];   /* G(s) [s] */
     double radiation_f0;                  /* the integrand at the grid's lower end (pure convection) */
@@ -45,7 +47,9 @@ static int radiation_cooling_check(const DrumState *s, char *why, int size)
 static void radiation_cooling_setup(DrumState *s, double emissivity)
 {
     double ta = s->ambient_C, heat_capacity_J_K = drum_density_kg_m3 * drum_specific_heat_J_kgK * drum_volume_m3;
-    double sg = radiation_side(s), top = fmax(sg * (s->initial_temp_C - ta), 1e-3) * 1.01;
+    double sg = radiation_side(s);
+    double span = sg > 0.0 ? RADIATION_SPAN_K : fmin(RADIATION_SPAN_K, 0.99 * (ta + KELVIN));  /* not below 0 K */
+    double top = fmax(span, sg * (s->initial_temp_C - ta) * 1.01);
     double start = log(1e-4), step = (log(top) - start) / (RADIATION_GRID - 1), f_prev = 0.0;
     int i;
     for (i = 0; i < RADIATION_GRID; i++) {        /* numpy.linspace, then the trapezoid rule */
