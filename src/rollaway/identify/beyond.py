@@ -115,7 +115,7 @@ def beyond_second_term(data, params, first: str, second: str, pair: FitResult) -
     return out
 
 
-def heldout_preference(d, two: FitResult, reform: FitResult) -> dict:
+def heldout_preference(d, two: FitResult, reform: FitResult, also=()) -> dict:
     """Held-out comparison of *two* against *reform* (:func:`beyond_reform`'s rule, without its BIC condition).
     Where *two* has per-test values that *reform* lacks, within each test (:func:`within_tests`).
 
@@ -124,12 +124,14 @@ def heldout_preference(d, two: FitResult, reform: FitResult) -> dict:
     (:func:`rollaway.identify.refit_heldout.refit_loto_residuals`, ``"heldout": "refitted"``): a flexible form on
     few tests has directions one test alone informs, where the linear step, and the advantage it gives the pair,
     can be spurious; only the folds whose linear step fails its check are refitted (``"refitted_folds"``, per fit).
-    One that fails on them stays failed: the second effect is then not named either way."""
+    One that fails on them stays failed: the second effect is then not named either way.  *also*: calibrations the
+    caller asks for next when the comparison passes, run beside the refitted folds
+    (:func:`~rollaway.identify.refit_heldout.refit_loto_residuals`)."""
     from rollaway.identify.refit_heldout import refit_loto_residuals
     out = preference(d, two, reform, [loto_residuals(reform), loto_residuals(two)])
     out["heldout"] = "linearised"
     if out["passes"]:
-        held, refitted = refit_loto_residuals([reform, two])
+        held, refitted = refit_loto_residuals([reform, two], also)
         if any(refitted):
             out = {**preference(d, two, reform, held), "heldout": "refitted", "refitted_folds": refitted,
                    "linearised": {k: out[k] for k in ("heldout_elpd", "heldout_se", "better_tests")}}

@@ -187,7 +187,8 @@ def beside_reformed(data, params, first: str, first_fit: FitResult, names, refor
                      max_iterations=REFORM_ITERATIONS)                      # with the re-formed first's budget
     if both.jacobian is None or both.bic - reform.bic >= BIC_THRESHOLD:
         return None
-    pref = heldout_preference(data, both, reform)
+    alone = _own_reform_job(params, name, both)         # asked next where the comparison passes: fitted beside it
+    pref = heldout_preference(data, both, reform, also=[alone] if alone else ())
     if not pref["passes"] or not _beyond_own_reform(data, params, name, both):
         return None
     pair = calibrate(data, [first, name], params, start=both.values)
@@ -207,11 +208,18 @@ def _all_but(params, flex, name: str) -> list[str]:
 def _beyond_own_reform(data, params, name: str, both: FitResult) -> bool:
     """The pair *both* (the first re-formed beside *name*) also predicts held-out tests better than *name* re-formed
     alone: else one mis-formed effect, *name*, is the story and the first was its stand-in."""
+    job = _own_reform_job(params, name, both)
+    if job is None:
+        return True
+    alone = calibrate(data, job[0], job[1], **job[2])
+    return alone.jacobian is None or heldout_preference(data, both, alone)["passes"]
+
+
+def _own_reform_job(params, name: str, both: FitResult):
+    """The fit job ``(effects, params, kwargs)`` of *name* re-formed alone (its hook as a linear spline along the
+    covariate *both* predicts), started from *both*, or None without a flexible form."""
     from rollaway.effects import get_effect
     from rollaway.identify.shape import covariate_of, flexible_effect, shape_hook
     found = shape_hook(get_effect(name))
     flex = None if found is None else flexible_effect(get_effect(name), covariate_of(both, found[1]))
-    if flex is None:
-        return True
-    alone = calibrate(data, [flex], params, start=both.values, max_iterations=REFORM_ITERATIONS)
-    return alone.jacobian is None or heldout_preference(data, both, alone)["passes"]
+    return None if flex is None else ([flex], params, dict(start=both.values, max_iterations=REFORM_ITERATIONS))

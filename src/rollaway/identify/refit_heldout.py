@@ -73,13 +73,14 @@ def linear_holds(fit, held) -> bool:
     return abs(float(actual @ actual) - linear) <= HELD_TOLERANCE * max(linear, float(g.sum()))
 
 
-def refit_loto_residuals(fits: list) -> tuple[list[np.ndarray], list[int]]:
+def refit_loto_residuals(fits: list, also=()) -> tuple[list[np.ndarray], list[int]]:
     """For each fit of *fits* (all on the same data): its leave-one-test-out standardised residuals
     [temperature | torque] (:func:`rollaway.uncertainty.heldout.loto_residuals`) with every fold whose linear step
     fails :func:`linear_holds` refitted — all those refits side by side on the machine's cores — and how many folds
     were refitted (kept on the fit: a fit compared twice is refitted once).  A fold that leaves fewer residuals than
     free globals, or that the solver cannot refit, keeps its linear step; a fit without free globals or Jacobian keeps
-    its own residuals."""
+    its own residuals.  *also*: more calibrations ``(effects, params, kwargs)`` the caller will ask for next, run in
+    the same batch where there are folds to refit (kept for that call by :mod:`rollaway.identify.memo`)."""
     from rollaway.identify.workers import run_fits
     data = fits[0].data
     known = [getattr(f, "_refit_heldout", None) for f in fits]     # a fit compared twice is refitted once
@@ -93,7 +94,12 @@ def refit_loto_residuals(fits: list) -> tuple[list[np.ndarray], list[int]]:
             if 2 * left > len(fit.names) and not linear_holds(fit, held):   # nothing to refit on: the linear step
                 calls.append((_fold, (held, fit.model, tuple(fit.names), _globals(fit.values), FOLD_ITERATIONS), {}))
                 owner.append(k)
-    done = run_fits(data, calls) if calls else []
+    if calls and also:
+        from rollaway.identify.calibrate import calibrate
+        ahead = [(calibrate, (effects, params), kw) for effects, params, kw in also]
+        done = run_fits(data, ahead + calls)[len(ahead):]
+    else:
+        done = run_fits(data, calls) if calls else []
     for k, fold in zip(owner, done):
         if fold.residual is not None:
             out[k][fold.rows] = fold.residual
