@@ -115,3 +115,25 @@ def test_a_fold_the_solver_cannot_refit_keeps_its_linear_step(monkeypatch):
     held, refitted = refit_loto_residuals([fit])
     assert refitted == [0]
     np.testing.assert_array_equal(held[0], loto_residuals(fit))
+
+
+def test_a_calibration_asked_next_is_fitted_beside_the_refitted_folds_and_kept(monkeypatch):
+    """*also*: the folds come back as without it, and the calibration the caller asks for next is then served by
+    the memo (no fit of its own), equal to one fitted alone."""
+    from rollaway.effects import get_effect
+    from rollaway.identify import calibrate as calibrate_module
+    from rollaway.identify.memo import fit_memo
+    from rollaway.identify.shape import flexible_effect
+    data = _with_noise(generate(["modulus_sigmoid"], sampling="5min", seed=0, n_forces=3, directions=("downhill",)))
+    fit = calibrate(data, [flexible_effect(get_effect("modulus_temperature"), data.drum_temp_C)])
+    job = (["lining_creep"], None, dict(start={"mu_drum": 0.35}, max_iterations=4))
+    alone = calibrate(data, *job[:2], **job[2])
+    plain = refit_loto_residuals([fit])
+    with fit_memo():
+        fit._refit_heldout = None
+        held, refitted = refit_loto_residuals([fit], also=[job])
+        assert refitted == plain[1] and refitted[0] >= 1
+        np.testing.assert_array_equal(held[0], plain[0][0])
+        monkeypatch.setattr(calibrate_module, "_calibrate", lambda *a, **k: pytest.fail("fitted again"))
+        kept = calibrate(data, *job[:2], **job[2])
+    assert kept.bic == alone.bic and kept.values.keys() == alone.values.keys()
