@@ -148,3 +148,24 @@ def test_a_spline_gives_each_copy_its_own_numbers_with_its_ordinates_per_copy(ba
         assert np.array_equal(getattr(both, channel), alone), channel
     assert not np.array_equal(both.torque_Nm[:len(data)], both.torque_Nm[len(data):2 * len(data)]) or \
         not np.array_equal(both.drum_temp_C[:len(data)], both.drum_temp_C[len(data):2 * len(data)])
+
+
+class _NumbersOnly(Effect):
+    """A plugin that says it is elementwise but reads its value as one number (``float``)."""
+    name = "numbers_only_test_effect"
+    elementwise = True
+    parameters = (EffectParameter("k", "–", neutral=0.0, lower=-0.5, upper=0.5, initial=0.1),)
+
+    def torque(self, state, torque_Nm, v):
+        return torque_Nm * (1.0 + float(v["k"]))
+
+
+def test_a_plugin_that_takes_its_values_as_numbers_only_is_fitted_one_call_per_set():
+    """Its globals cannot be given per copy: the fit falls back to one call per value set, with the numbers of a fit
+    that never stacked."""
+    data = generate(["creep_exponential"], sampling="15min", seed=8, n_forces=2)
+    fit = calibrate(data, [_NumbersOnly()])
+    with pytest.MonkeyPatch.context() as m:
+        m.setattr(fitting, "stack_copies", lambda data, copies: None)
+        plain = calibrate(data, [_NumbersOnly()])
+    assert fit.bic == plain.bic and fit.values["numbers_only_test_effect.k"] == plain.values["numbers_only_test_effect.k"]

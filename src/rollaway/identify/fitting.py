@@ -27,6 +27,7 @@ from scipy import optimize
 from threadpoolctl import threadpool_limits
 
 from rollaway.bench.measurements import Measurements
+from rollaway.errors import UserError
 from rollaway.identify.model import INITIAL_TEMP, BenchModel, ambient_varies
 
 MAX_OUTER = 4
@@ -140,7 +141,11 @@ class Problem:
                 or not all(np.ndim(v[f]) == 1 for v in many for f in self.families)):
             return [self.profile(v)[0] for v in many]
         k = len(self.families) + 1
-        rs = self.raw_stacked([s for v in many for s in self._family_sets(v)])
+        try:
+            rs = self.raw_stacked([s for v in many for s in self._family_sets(v)])
+        except UserError:          # a plugin's hook that takes its values as numbers only: one call per set
+            self.stacked = None
+            return [self.profile(v)[0] for v in many]
         return [p[0] for p in self._project_many(many, np.stack(rs).reshape(len(many), k, -1))]
 
     def _project(self, vals: dict, rs: list[np.ndarray]):
