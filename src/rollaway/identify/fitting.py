@@ -172,15 +172,13 @@ class Problem:
         else:
             ridge = 1e-12 * np.maximum(np.trace(normal, axis1=2, axis2=3), 1e-300)[..., None, None] * np.eye(m)
             d = -np.linalg.solve(normal + ridge + 1e-300 * np.eye(m), rhs[..., None])[..., 0]
-        steps = []
-        for i, vals in enumerate(many):
-            step = {}
-            for a, f in enumerate(self.families):
-                lo, hi = self.bounds[f]
-                new = np.clip(vals[f] + d[i, :, a], lo, hi)
-                d[i, :, a] = new - vals[f]
-                step[f] = new
-            steps.append(step)
+        steps = [{} for _ in range(n)]
+        for a, f in enumerate(self.families):          # each test's value kept inside its bounds
+            now = np.stack([np.broadcast_to(vals[f], nt) for vals in many]).astype(float)
+            new = np.clip(now + d[:, :, a], *self.bounds[f])
+            d[:, :, a] = new - now
+            for i in range(n):
+                steps[i][f] = new[i]
         r = r0 + np.einsum("nij,nij->ni", gm, d[:, self.rows_test])
         return [(r[i], steps[i], [gm[i, :, a] for a in range(m)], normal[i]) for i in range(n)]
 
