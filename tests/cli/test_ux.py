@@ -80,3 +80,21 @@ def test_check_table_fits_a_terminal(run_cli):
     code, out, _ = run_cli("check", "fmvss135")
     table = [line for line in out.splitlines() if not line.startswith("  fmvss135:")]
     assert code == 0 and max(len(line) for line in table) <= 100
+
+
+def test_the_console_script_ends_with_the_commands_code_its_output_whole_and_exit_handlers_run(tmp_path):
+    """:func:`rollaway.cli.run` skips the interpreter's teardown: the exit code, every line written and the
+    ``atexit`` handlers (pools, temporary folders) are kept."""
+    marker = tmp_path / "atexit.txt"
+    code = ("import atexit, sys; from pathlib import Path; "
+            f"atexit.register(lambda: Path({str(marker)!r}).write_text('ran')); "
+            "sys.argv = ['rollaway'] + sys.argv[1:]; from rollaway.cli import run; run()")
+    ok = subprocess.run([sys.executable, "-c", code, "hold", "--grade-pct", "20", "--hand-force-N", "400"],
+                        capture_output=True, text=True)
+    assert ok.returncode == 0, ok.stderr
+    assert ok.stdout.strip() and "verdict" in ok.stdout.lower() and marker.read_text() == "ran"
+    marker.unlink()
+    bad = subprocess.run([sys.executable, "-c", code, "hold", "--grade-pct", "20", "--hand-force-N", "-5"],
+                         capture_output=True, text=True)
+    assert bad.returncode == 2 and bad.stderr.count("\n") == 1 and "Traceback" not in bad.stderr
+    assert marker.read_text() == "ran"
