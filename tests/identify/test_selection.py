@@ -101,3 +101,40 @@ def test_clean_campaigns_with_the_eq24_law_held_name_nothing():
         held += any("not needed" in (g.drum.entries[n].reason or "") for n in ("u6_offset_m", "u6_slope_m_per_N"))
         assert g.verdict == "none" and not g.effects, (i, g.verdict)
     assert held >= 6
+
+
+def test_the_exchange_ranks_swaps_of_the_last_effect_by_the_forward_steps_own_fits(monkeypatch):
+    """The forward step that added the last effect fitted every other effect in its place already: the exchange
+    ranks those swaps by that step's fits (the ones fitted with the same plan) and fits only the others anew."""
+    from types import SimpleNamespace
+
+    from rollaway.identify import selection as S
+    from rollaway.identify.calibrate import calibrate
+    d = diagnose(generate(["friction_linear"], sampling="5min", seed=4600, forces=np.linspace(180.0, 320.0, 3)))
+    data, nq, nt = d.data, d.noise_torque, d.noise_temp
+    plan = DrumPlan(d.drum.params, ("mu_drum", "u6_slope_m_per_N", "heat_transfer_W_m2K"))
+    chosen = ["friction_temperature", "lining_creep"]
+    current = calibrate(data, chosen, plan)
+    known_fit = calibrate(data, ["friction_temperature", "cable_relaxation"], plan)
+    fitted = []
+    real = S.run_fits
+    monkeypatch.setattr(S, "run_fits", lambda data_, calls: fitted.extend(tuple(c[1][0]) for c in calls)
+                        or real(data_, calls))
+    names = ["lining_creep", "cable_relaxation", "friction_temperature", "shoe_thermal_lag"]
+    kept = S.Candidate("cable_relaxation", known_fit, 0.0, 0.0, step=2, plan=plan)
+    got, fit, _, swaps = S.exchange(data, plan, names, chosen, current, S.structure(current, nq, nt), nq, nt,
+                                    known=[kept])
+    assert ("friction_temperature", "cable_relaxation") not in fitted
+    assert ("cable_relaxation", "lining_creep") in fitted and ("friction_temperature", "shoe_thermal_lag") in fitted
+    fitted.clear()                                 # the kept fit ranks the swap it stands for: best, it is refitted
+    refits = []
+    monkeypatch.setattr(S, "calibrate", lambda data_, effects, *a, **k: refits.append(list(effects))
+                        or calibrate(data_, effects, *a, **k))
+    best = S.Candidate("cable_relaxation", SimpleNamespace(bic=current.bic - 50.0, values=known_fit.values),
+                       0.0, 0.0, step=2, plan=plan)
+    S.exchange(data, plan, names, chosen, current, S.structure(current, nq, nt), nq, nt, known=[best])
+    assert refits[-1] == ["friction_temperature", "cable_relaxation"], refits
+    fitted.clear()
+    other = S.Candidate("cable_relaxation", known_fit, 0.0, 0.0, step=2, plan=DrumPlan(d.drum.params, ("mu_drum",)))
+    S.exchange(data, plan, names, chosen, current, S.structure(current, nq, nt), nq, nt, known=[other])
+    assert ("friction_temperature", "cable_relaxation") in fitted      # fitted with another plan: fitted anew

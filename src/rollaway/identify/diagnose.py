@@ -117,6 +117,7 @@ def diagnose(data: Measurements, params=None, effects=None, *, noise_torque_Nm: 
             break
         best = passing[0]
         chosen.append(best.effect)
+        known = cands                                        # the step that added the last effect (exchange)
         struct = structure(best.fit, nq, nt)
         steps.append({"step": step, "added": best.effect, "delta_bic": best.delta_bic, "cv_score": best.cv_score,
                       "current_cv": cur_cv, "cv_better_tests": best.cv_better_tests,
@@ -142,7 +143,8 @@ def diagnose(data: Measurements, params=None, effects=None, *, noise_torque_Nm: 
         fits.append(current)      # a clean residual does not stop the search: a second effect the calibrated
                                   # drum partly absorbed must still pass ΔBIC < −10 and the held-out test
     if len(chosen) >= 2:
-        chosen, current, struct, swaps = exchange(data, params, names, chosen, current, struct, nq, nt)
+        chosen, current, struct, swaps = exchange(data, params, names, chosen, current, struct, nq, nt,
+                                                  known=known)
         chosen, current, struct, removed = eliminate(data, params, chosen, current, struct, nq, nt)
         swaps += [(a, "nothing", d) for a, d in removed]
         if swaps:

@@ -37,6 +37,7 @@ class Candidate:
     cv_score: float | None = None       # Σ over held-out tests of Σ (residual/σ)², both channels
     cv_better_tests: int | None = None
     step: int = 1                       # forward-selection step in which it was tried
+    plan: object = None                 # the parameter plan it was fitted with (its better one)
 
     def as_dict(self) -> dict:
         return {"effect": self.effect, "rmse_torque_Nm": self.fit.rmse_torque_Nm, "rmse_temp_C": self.fit.rmse_temp_C,
@@ -178,7 +179,7 @@ def forward_step(data, params, names, current: FitResult, chosen: list[str], ste
     plan_of, cands = {}, []
     for c, (_, _, plan) in sorted(zip(every, plans), key=lambda t: t[0].delta_bic):
         if c.effect not in plan_of:                     # each effect by its better plan
-            plan_of[c.effect] = plan
+            plan_of[c.effect] = c.plan = plan
             cands.append(c)
     top = [c for c in cands[:REFIT_TOP] if held is not params or not has_per_test(c.effect)]
     for c, fit in zip(top, run_fits(data, [(calibrate, (chosen + [c.effect], plan_of[c.effect]),
@@ -235,18 +236,26 @@ def _held_plan(params, current: FitResult):
     return DrumPlan(apply(params.params, {n: current.values[n] for n in free}), ()), len(free)
 
 
-def exchange(data, params, names, chosen, current, struct, nq, nt, rounds: int = 1):
+def exchange(data, params, names, chosen, current, struct, nq, nt, rounds: int = 1, known=()):
     """Stepwise exchange: replace a selected effect by an unselected one while BIC improves and the
-    residual stays as clean (forward selection can pick an effect that absorbs part of a later one)."""
+    residual stays as clean (forward selection can pick an effect that absorbs part of a later one).
+    *known*: the candidates of the forward step that added the last selected effect (:func:`forward_step`): a
+    swap of that last effect is their own effect set, and where one was fitted with *params* its fit ranks the
+    swap (the step compared them all already) instead of a new screen."""
     swaps = []
+    last = {tuple(chosen[:-1] + [c.effect]): c.fit for c in known if c.plan == params}
     for _ in range(rounds):
         best = None
         per_test_ok = per_test_signature(current, nq)
         swaps_tried = [(i, new) for i in range(len(chosen)) for new in names
                        if new not in chosen and not (has_per_test(new) and not per_test_ok)]
-        fits = run_fits(data, [(calibrate, (chosen[:i] + [new] + chosen[i + 1:], params),
-                                dict(start=current.values, statistics=False, max_iterations=SCREEN_ITERATIONS))
-                               for i, new in swaps_tried])
+        trials = [chosen[:i] + [new] + chosen[i + 1:] for i, new in swaps_tried]
+        todo = [t for t in trials if tuple(t) not in last]
+        done = dict(zip(map(tuple, todo), run_fits(data, [
+            (calibrate, (t, params), dict(start=current.values, statistics=False, max_iterations=SCREEN_ITERATIONS))
+            for t in todo])))
+        fits = [last[tuple(t)] if tuple(t) in last else done[tuple(t)] for t in trials]
+        last = {}                             # a later round starts from a swapped selection
         for (i, new), fit in zip(swaps_tried, fits):
             if fit.bic < current.bic - 2.0 and (best is None or fit.bic < best[2].bic):
                 best = (i, new, fit)
