@@ -31,10 +31,10 @@ def test_fits_on_several_cores_are_the_fits_one_after_another(data, monkeypatch)
     jobs = [([e], None, dict(max_iterations=6)) for e in ("lining_creep", "cable_relaxation", "friction_temperature")]
     monkeypatch.setenv("ROLLAWAY_WORKERS", "2")
     spawned = []
-    real = workers.ProcessPoolExecutor
-    monkeypatch.setattr(workers, "ProcessPoolExecutor", lambda *a, **k: spawned.append(a) or real(*a, **k))
+    real = workers._fork
+    monkeypatch.setattr(workers, "_fork", lambda: spawned.append(1) or real())
     pooled = fit_all(data, jobs)
-    assert spawned and spawned[0][0] == 2                       # the pool ran them
+    assert spawned == [1]                          # one helper beside this process shared them
     monkeypatch.setenv("ROLLAWAY_WORKERS", "1")
     alone = fit_all(data, jobs)
     for a, b in zip(pooled, alone):
@@ -62,27 +62,48 @@ def test_workers_setting_is_validated_and_one_worker_stays_in_process(data, monk
     with pytest.raises(UserError, match="at least 1"):
         cores()
     monkeypatch.setenv("ROLLAWAY_WORKERS", "1")
-    monkeypatch.setattr(workers, "ProcessPoolExecutor", lambda *a, **k: pytest.fail("no pool with one worker"))
+    monkeypatch.setattr(workers, "_fork", lambda: pytest.fail("no helper with one worker"))
     assert len(fit_all(data, [(["lining_creep"], None, {}), (["cable_relaxation"], None, {})])) == 2
 
 
-def test_a_pool_that_fails_leaves_the_fits_to_this_process(data, monkeypatch):
+def test_a_helper_that_cannot_start_or_dies_or_fails_leaves_its_fits_to_this_process(data, monkeypatch):
+    import os
+    monkeypatch.setenv("ROLLAWAY_WORKERS", "2")
+    jobs = [(["lining_creep"], None, {}), (["cable_relaxation"], None, {}), (["friction_temperature"], None, {})]
+    monkeypatch.setenv("ROLLAWAY_WORKERS", "1")
+    alone = fit_all(data, jobs)
     monkeypatch.setenv("ROLLAWAY_WORKERS", "2")
 
-    def broken(*a, **k):
+    def broken():
         raise OSError("no processes here")
-    monkeypatch.setattr(workers, "ProcessPoolExecutor", broken)
-    fits = fit_all(data, [(["lining_creep"], None, {}), (["cable_relaxation"], None, {})])
-    assert [f.effects for f in fits] == [["lining_creep"], ["cable_relaxation"]]
+    monkeypatch.setattr(workers, "_fork", broken)
+    fits = fit_all(data, jobs)
+    assert [f.effects for f in fits] == [["lining_creep"], ["cable_relaxation"], ["friction_temperature"]]
+    monkeypatch.setattr(workers, "_fork", os.fork)
+    for death in (lambda i: os._exit(9), lambda i: 1 / 0):       # killed on its first fit; a fit that raises there
+        monkeypatch.setattr(workers, "_call", death)
+        fits = fit_all(data, jobs)
+        for a, b in zip(fits, alone):
+            assert a.effects == b.effects and a.bic == b.bic and a.data is data
     monkeypatch.setattr(mp, "current_process", lambda: type("P", (), {"daemon": True})())
-    monkeypatch.setattr(workers, "ProcessPoolExecutor", lambda *a, **k: pytest.fail("a daemon cannot have children"))
-    assert len(fit_all(data, [(["lining_creep"], None, {}), (["cable_relaxation"], None, {})])) == 2
+    monkeypatch.setattr(workers, "_fork", lambda: pytest.fail("a daemon cannot have children"))
+    assert len(fit_all(data, jobs[:2])) == 2
+
+
+def test_an_error_of_a_fit_itself_is_raised_here(data, monkeypatch):
+    """A fit that fails in a helper fails again here, with its own error (the message the user reads)."""
+    monkeypatch.setenv("ROLLAWAY_WORKERS", "2")
+
+    def bad(d, x):
+        raise UserError(f"plugin value {x} is not a number")
+    with pytest.raises(UserError, match=r"plugin value \d is not a number"):
+        run_fits(data, [(bad, (1,), {}), (bad, (2,), {}), (bad, (3,), {})][::-1])
 
 
 def test_outside_the_main_thread_the_fits_stay_in_process(data, monkeypatch):
     import threading
     monkeypatch.setenv("ROLLAWAY_WORKERS", "2")
-    monkeypatch.setattr(workers, "ProcessPoolExecutor", lambda *a, **k: pytest.fail("no fork outside the main thread"))
+    monkeypatch.setattr(workers, "_fork", lambda: pytest.fail("no fork outside the main thread"))
     out = []
     t = threading.Thread(target=lambda: out.append(fit_all(data, [(["lining_creep"], None, {}),
                                                                   (["cable_relaxation"], None, {})])))
