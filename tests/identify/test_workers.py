@@ -74,12 +74,16 @@ def test_a_helper_that_cannot_start_or_dies_or_fails_leaves_its_fits_to_this_pro
     alone = fit_all(data, jobs)
     monkeypatch.setenv("ROLLAWAY_WORKERS", "2")
 
-    def broken():
+    def broken(*_):
         raise OSError("no processes here")
     monkeypatch.setattr(workers, "_fork", broken)
     fits = fit_all(data, jobs)
     assert [f.effects for f in fits] == [["lining_creep"], ["cable_relaxation"], ["friction_temperature"]]
     monkeypatch.setattr(workers, "_fork", os.fork)
+    monkeypatch.setattr(workers.mmap, "mmap", broken)          # no shared memory for the counter: in-process
+    assert [f.effects for f in fit_all(data, jobs)] == [f.effects for f in alone]
+    monkeypatch.undo()
+    monkeypatch.setenv("ROLLAWAY_WORKERS", "2")
     for death in (lambda i: os._exit(9), lambda i: 1 / 0):       # killed on its first fit; a fit that raises there
         monkeypatch.setattr(workers, "_call", death)
         fits = fit_all(data, jobs)

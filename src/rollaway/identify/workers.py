@@ -83,9 +83,13 @@ def _run(data, calls: list[tuple]) -> list:
     if (n < 2 or _fork is None or mp.current_process().daemon
             or threading.current_thread() is not threading.main_thread()):
         return [fn(data, *args, **kwargs) for fn, args, kwargs in calls]
+    try:                         # the shared counter (anonymous shared memory and a semaphore)
+        counter, lock = mmap.mmap(-1, 8), mp.get_context("fork").Lock()
+    except (OSError, ValueError):        # none to be had here (no /dev/shm): one after another
+        return [fn(data, *args, **kwargs) for fn, args, kwargs in calls]
     _CALLS = (data, calls)
     try:
-        out = _shared(data, calls, n)
+        out = _shared(data, calls, n, counter, lock)
     finally:
         _CALLS = (None, [])
     for i, fit in enumerate(out):
@@ -97,11 +101,11 @@ def _run(data, calls: list[tuple]) -> list:
     return out
 
 
-def _shared(data, calls: list[tuple], n: int) -> list:
+def _shared(data, calls: list[tuple], n: int, counter: mmap.mmap, lock) -> list:
     """The fits of *calls* shared between this process and up to *n* − 1 forked helpers, each taking the next
-    index from one counter in shared memory; ``None`` where a helper's fit did not come back."""
+    index from *counter* (8 bytes of shared memory, guarded by *lock*); ``None`` where a helper's fit did not
+    come back."""
     count = len(calls)
-    counter, lock = mmap.mmap(-1, 8), mp.get_context("fork").Lock()
 
     def take() -> int:
         with lock:
@@ -110,7 +114,7 @@ def _shared(data, calls: list[tuple], n: int) -> list:
         return i
 
     out: list = [None] * count
-    helpers, readers = [], []
+    helpers, readers, finished = [], [], False
     try:
         for _ in range(n - 1):
             r, w = os.pipe()
@@ -134,10 +138,13 @@ def _shared(data, calls: list[tuple], n: int) -> list:
             out[i].data = None   # as a helper's (the caller's object is put back)
         for t in readers:
             t.join()
+        finished = True
     finally:
-        for pid, r in helpers:
-            if any(t.is_alive() for t in readers):     # this process failed or was interrupted: stop the helpers
+        for k, (pid, r) in enumerate(helpers):
+            if not finished:     # this process failed or was interrupted: stop the helpers
                 _kill(pid)
+                if k >= len(readers):                  # a pipe nobody reads
+                    os.close(r)
             try:
                 os.waitpid(pid, 0)
             except ChildProcessError:
