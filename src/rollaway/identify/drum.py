@@ -240,13 +240,10 @@ def _prune(data, p, candidates: list[str], fit: FitResult, vals: dict, fixed):
     """Backward elimination by BIC: a brake parameter whose freeing does not lower BIC is held at its assumed
     value (the data agree with it); the torque scale is always fitted.  *candidates* is pruned in place."""
     while len(candidates) > 1:
-        trials = []
-        for n in candidates:
-            if n == "mu_drum":
-                continue
-            rest = tuple(c for c in candidates if c != n)
-            start = {k: v for k, v in vals.items() if k != n}
-            trials.append((calibrate(data, (), DrumPlan(p, rest), start=start), n))
+        names = [n for n in candidates if n != "mu_drum"]
+        trials = list(zip(fit_all(data, [((), DrumPlan(p, tuple(c for c in candidates if c != n)),
+                                          dict(start={k: v for k, v in vals.items() if k != n})) for n in names]),
+                          names))                       # each held back in turn, side by side on the cores
         if not trials:
             break
         best, name = min(trials, key=lambda t: t[0].bic)
