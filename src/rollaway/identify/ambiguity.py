@@ -248,12 +248,16 @@ def weak_alternatives(plan, base, candidates: list, validity: dict, noise_torque
 def _held_where_unneeded(plan, effect: str, fit):
     """*fit* (*effect* on the drum of *plan*) with the brake parameters it makes unnecessary held at their assumed
     values, one at a time while BIC drops; None without a Jacobian."""
-    from rollaway.identify.calibrate import calibrate
     from rollaway.identify.model import DrumPlan
+    from rollaway.identify.workers import fit_all
     free = list(plan.free)
     while len(free) > 1:
-        trials = [(calibrate(fit.data, [effect], DrumPlan(plan.params, tuple(f for f in free if f != n)),
-                             start={k: v for k, v in fit.values.items() if k != n}), n) for n in free if n != "mu_drum"]
+        names = [n for n in free if n != "mu_drum"]
+        if not names:
+            break
+        trials = list(zip(fit_all(fit.data, [([effect], DrumPlan(plan.params, tuple(f for f in free if f != n)),
+                                              dict(start={k: v for k, v in fit.values.items() if k != n}))
+                                             for n in names]), names))      # side by side on the cores
         best, name = min(trials, key=lambda t: t[0].bic)
         if best.bic >= fit.bic:
             break
