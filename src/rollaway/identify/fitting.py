@@ -31,7 +31,7 @@ from rollaway.errors import UserError
 from rollaway.identify.model import INITIAL_TEMP, BenchModel, ambient_varies
 
 MAX_OUTER = 4
-TOLERANCE = 1e-7             # MINPACK's ftol, xtol and gtol (see solve)
+TOLERANCE = 1e-6             # MINPACK's ftol, xtol and gtol (see solve)
 MAX_ITERATIONS = 25          # a pass's MINPACK budget: MAX_ITERATIONS·(k + 1) residual calls (SciPy ≥ 1.16 counts
                              # them without the Jacobian's difference quotients: up to that many iterations; see
                              # docs/identification.md, "The screens' budget, measured")
@@ -83,6 +83,7 @@ class Problem:
         self.stacked = stack_copies(data, len(self.families) + 1) if batch else None
         self._copies = {len(self.families) + 1: self.stacked} if batch else {}   # stacked data by copies
         self._tiled = {}         # the weights tiled like the stacked data, by copies
+        self._cells = {}         # (value set, test) of every row of :meth:`_project_many`, by value sets
 
     def raw(self, vals: dict) -> np.ndarray:
         self.nfev += 1
@@ -104,10 +105,11 @@ class Problem:
         nt = self.data.n_tests
         vals = {}
         for k, x in sets[0].items():
+            col = [s[k] for s in sets]
             if isinstance(x, np.ndarray) and x.ndim == 1:
-                vals[k] = np.concatenate([s[k] for s in sets])
-            elif x is not None and np.ndim(x) == 0 and any(s[k] != x for s in sets[1:]):
-                vals[k] = np.repeat(np.array([float(s[k]) for s in sets]), nt)     # per test of the stack
+                vals[k] = np.concatenate(col)
+            elif x is not None and col.count(x) < c and np.ndim(x) == 0:    # count: by identity, else ==
+                vals[k] = np.repeat(np.array(col, float), nt)                # per test of the stack
             else:
                 vals[k] = x
         p = self.model.predict(data, vals)
@@ -157,8 +159,13 @@ class Problem:
         :meth:`_family_sets`.  One Gauss–Newton step per test and set, by bincounts over (set, test)."""
         n, nt, m = len(many), self.data.n_tests, len(self.families)
         r0 = stacked[:, 0]                                                      # sets × rows
-        gm = np.stack([(stacked[:, 1 + a] - r0) / self.step[f] for a, f in enumerate(self.families)], axis=2)
-        cell = (np.arange(n)[:, None] * nt + self.rows_test[None, :]).ravel()   # (set, test) of every row
+        if m == 1:      # the one column as a view (np.stack would copy it)
+            gm = ((stacked[:, 1] - r0) / self.step[self.families[0]])[..., None]
+        else:
+            gm = np.stack([(stacked[:, 1 + a] - r0) / self.step[f] for a, f in enumerate(self.families)], axis=2)
+        cell = self._cells.get(n)
+        if cell is None:                                                        # (set, test) of every row
+            cell = self._cells[n] = (np.arange(n)[:, None] * nt + self.rows_test[None, :]).ravel()
         normal = np.zeros((n, nt, m, m))
         rhs = np.zeros((n, nt, m))
         for a in range(m):
@@ -174,7 +181,9 @@ class Problem:
             d = -np.linalg.solve(normal + ridge + 1e-300 * np.eye(m), rhs[..., None])[..., 0]
         steps = [{} for _ in range(n)]
         for a, f in enumerate(self.families):          # each test's value kept inside its bounds
-            now = np.stack([np.broadcast_to(vals[f], nt) for vals in many]).astype(float)
+            now = np.empty((n, nt))
+            for i, vals in enumerate(many):
+                now[i] = vals[f]
             new = np.clip(now + d[:, :, a], *self.bounds[f])
             d[:, :, a] = new - now
             for i in range(n):
@@ -195,8 +204,8 @@ class Problem:
         the residual was steep in far from the optimum keeps a tiny trust radius, and a fit along a
         curved valley, μ_d against the arm ratio and the eq. (24) slope, crawls to its budget).
         A pass stops when the relative reduction of the sum of squares or the relative step falls below
-        *tol* (:data:`TOLERANCE`, 1e-7): the sum of ≈ 2·N squared standardised rows is then settled to
-        ≈ 2·N·1e-7 (0.002 at 10 000 rows, against a selection threshold of 10), and misfit fits —
+        *tol* (:data:`TOLERANCE`, 1e-6): the sum of ≈ 2·N squared standardised rows is then settled to
+        ≈ 2·N·1e-6 (0.02 at 10 000 rows, against a selection threshold of 10), and misfit fits —
         Gauss–Newton converges only linearly where the residual is large — no longer spend their last
         iterations on digits no criterion reads.
         """
