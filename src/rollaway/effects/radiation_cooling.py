@@ -1,6 +1,8 @@
 """Radiation beside convection in the drum's cooling law."""
 from __future__ import annotations
 
+import functools
+
 import numpy as np
 
 from rollaway.effects.base import Effect, EffectParameter
@@ -82,20 +84,34 @@ def _tabled_C(time_s, initial_temp_C, ambient_C, heat_transfer_W_m2K, emissivity
     for (ta, hj, ej, sg), sel in _key_groups(keys):       # one table of G per (ambient, h, ε, side)
         span = TABLE_SPAN_K if sg > 0 else min(TABLE_SPAN_K, 0.99 * (ta + KELVIN))   # no colder than 0 K
         top = max(span, float(np.max(sg * (t0[sel] - ta))) * 1.01)
-        s = np.linspace(np.log(1e-4), np.log(top), n_grid)
-        d = np.exp(s)
-        q = hj * cooled_area_m2 * d + ej * STEFAN_BOLTZMANN_W_m2K4 * cooled_area_m2 * sg * (
-            (ta + sg * d + KELVIN) ** 4 - (ta + KELVIN) ** 4)
-        f = heat_capacity_J_K * d / q
-        g = np.concatenate([[0.0], np.cumsum(0.5 * (f[1:] + f[:-1]) * np.diff(s))])   # increasing in s
+        s, g, f0 = _table(float(ta), float(hj), float(ej), float(sg), top, float(cooled_area_m2),
+                          float(heat_capacity_J_K), int(n_grid))
         d0 = np.clip(sg * (t0[sel] - ta), 1e-4, None)
         g_target = np.interp(np.log(d0), s, g) - t[sel]
-        # below the grid the integrand is the pure-convection limit: extend exponentially
-        f0 = f[0]
+        # below the grid the integrand is the pure-convection limit (f0): extend exponentially
         inside = g_target >= 0.0
         s_out = np.where(inside, np.interp(np.maximum(g_target, 0.0), g, s), s[0] + g_target / f0)
         out[sel] = ta + np.sign(t0[sel] - ta) * np.exp(s_out)      # a drum at the ambient stays there
     return out.reshape(shape)
+
+
+TABLES = 64                  # the tables of G kept: a fit's Jacobian columns of the torque's parameters, and of a
+                             # global the cooling does not read, ask for the same (ambient, h, ε, side) again
+
+
+@functools.lru_cache(maxsize=TABLES)
+def _table(ambient_C: float, h: float, eps: float, side: float, top_K: float, cooled_area_m2: float,
+           heat_capacity_J_K: float, n_grid: int) -> tuple[np.ndarray, np.ndarray, float]:
+    """The table of :func:`_tabled_C` for one (ambient, h, ε, side): the log grid s = ln|T − T_a| up to *top_K*,
+    G(s) on it and the integrand at its lowest point (read-only arrays)."""
+    s = np.linspace(np.log(1e-4), np.log(top_K), n_grid)
+    d = np.exp(s)
+    q = h * cooled_area_m2 * d + eps * STEFAN_BOLTZMANN_W_m2K4 * cooled_area_m2 * side * (
+        (ambient_C + side * d + KELVIN) ** 4 - (ambient_C + KELVIN) ** 4)
+    f = heat_capacity_J_K * d / q
+    g = np.concatenate([[0.0], np.cumsum(0.5 * (f[1:] + f[:-1]) * np.diff(s))])   # increasing in s
+    s.flags.writeable = g.flags.writeable = False
+    return s, g, float(f[0])
 
 
 MAX_RUNS = 256               # more runs of equal keys than this: group by sorting each column instead
