@@ -27,4 +27,8 @@ python -m pip install -q --disable-pip-version-check --root-user-action=ignore -
 grep -v "is ignored: it is neither a file nor a directory" "$log" || true
 rm -f "$log"
 [ "$status" = 0 ] || { echo "[install] pip install failed (exit $status)" >&2; exit "$status"; }
+# An editable install runs rollaway from src/ and pip compiles nothing there; where PYTHONDONTWRITEBYTECODE is set
+# (as on this kind of machine) Python would then compile every module of rollaway again at each command (0.3-0.5 s
+# of a diagnose).  Compiled once here, the modules are read (and recompiled only where a source file changed).
+python -m compileall -q -j 0 src/rollaway >/dev/null
 echo "[install] done: $(python -c 'import mujoco, rollaway; print("mujoco", mujoco.__version__, "rollaway", rollaway.__version__)')"
