@@ -81,6 +81,24 @@ def test_verdict_line_names_every_alternative_and_the_test():
     assert verdict_line("none", [], structure=True).startswith("none: structure remains that no catalogue effect")
 
 
+def test_two_closest_forms_the_data_separate_are_not_called_indistinguishable():
+    """Two closest effects that both leave structure are named as pointers; where their better forms' BIC lie far
+    apart the line says the data separate them (and which is nearer) instead of proposing a test to do it."""
+    def alts(dbic_a, dbic_b):
+        tell = {"words": "a test facing uphill at 405 N would", "tested_difference_Nm": 376.0}
+        return [{"kind": "closest", "effects": ["friction_temperature"], "form_delta_bic": dbic_a, "tell_apart": tell,
+                 "why": "ΔBIC"},
+                {"kind": "closest", "effects": ["nonlinear_lining_stiffness"], "form_delta_bic": dbic_b, "why": "ΔBIC",
+                 "tell_apart": tell}]
+    near = verdict_line("none", alts(-84.0, -84.0 + INDISTINGUISHABLE_BIC - 0.5))
+    assert "these data cannot tell them apart; a test facing uphill" in near, near
+    far = verdict_line("none", alts(-83.6, -32.5))
+    assert "cannot tell" not in far and "a test facing" not in far, far
+    assert "these data tell them apart (BIC 51.1 apart; torques up to 376 N·m apart" in far, far
+    assert far.endswith("friction_temperature is the nearer"), far
+    assert "these data tell them apart" in alternative_words("none", alts(-83.6, -32.5))[0]
+
+
 def test_the_verdict_line_sets_every_named_effect_against_an_alternative_that_replaces_one_of_them():
     named = ["friction_temperature", "cable_relaxation"]
     alts = [{"effects": ["friction_temperature", "shoe_thermal_lag"], "why": "with a spline in time_s …",

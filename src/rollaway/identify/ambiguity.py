@@ -188,7 +188,8 @@ def closest(base, candidates: list, base_cv, threshold: float, validity: dict, n
         why = (f"ΔBIC {c.delta_bic:.1f} and held-out log score {elpd:+.1f} ± {se:.1f} against the drum alone"
                + (" (the held-out prediction does not support it)" if held_out_against else ""))
         a = {"kind": "closest", "effects": [c.effect], "delta_bic": float(c.delta_bic), "heldout_elpd": elpd,
-             "heldout_se": se, "fit": c.fit, "clears": c.effect in cleared, "why": why}
+             "heldout_se": se, "fit": c.fit, "clears": c.effect in cleared, "why": why,
+             "form_delta_bic": forms[c.effect][1]}
         if c.effect in shapes:
             fit = shapes[c.effect][0]
             dbic = float(fit.bic - base.bic)
@@ -333,12 +334,20 @@ def _closest_clause(alternatives: list[dict]) -> tuple[str, str]:
     names = [a["effects"][0] for a in alternatives]
     clear = [n for a, n in zip(alternatives, names) if a.get("clears")]
     words = alternatives[0]["tell_apart"]["words"]
+    between = f"these data cannot tell them apart; {words}" if len(names) > 1 else ""
+    gap = (abs(alternatives[1]["form_delta_bic"] - alternatives[0]["form_delta_bic"])
+           if len(names) > 1 and all("form_delta_bic" in a for a in alternatives[:2]) else 0.0)
+    if gap > INDISTINGUISHABLE_BIC:      # the tested conditions already separate them: no test to propose
+        tested = alternatives[0]["tell_apart"].get("tested_difference_Nm")
+        between = (f"these data tell them apart (BIC {gap:.1f} apart"
+                   + (f"; torques up to {tested:.3g} N·m apart over the tested conditions" if tested else "")
+                   + f"), yet each form leaves structure: {names[0]} is the nearer")
     if not clear:
-        return "each leaves structure", (f"these data cannot tell them apart; {words}" if len(names) > 1 else "")
+        return "each leaves structure", between
     forms = "its catalogue form leaves" if len(names) == 1 else "each catalogue form leaves"
     if len(clear) == len(names):
         return (f"{forms} structure; shape-free, {' and '.join(clear)} clear{'s' if len(clear) == 1 else ''} it",
-                f"these data cannot tell them apart; {words}" if len(names) > 1 else "")
+                between)
     rest = [n for n in names if n not in clear]
     return (f"{forms} structure; shape-free, {clear[0]} clears it, {rest[0]} does not",
             f"the data lean to {clear[0]}; {words}")
