@@ -195,8 +195,8 @@ class Problem:
               max_iterations: int = MAX_ITERATIONS) -> Solution:
         """Fit the globals (and per-test families); *jacobian*: also the projected Jacobian for errors.
 
-        The globals are fitted by MINPACK's Levenberg–Marquardt (:func:`scipy.optimize.least_squares`,
-        ``method="lm"``) in bounded-to-unbounded coordinates x = lo + (hi − lo)·(sin z + 1)/2 (the
+        The globals are fitted by MINPACK's Levenberg–Marquardt (:func:`levenberg_marquardt`: as
+        :func:`scipy.optimize.least_squares` with ``method="lm"`` runs it) in bounded-to-unbounded coordinates x = lo + (hi − lo)·(sin z + 1)/2 (the
         MINUIT transformation, as lmfit uses): the residual has 2·N rows and only a few columns, where
         MINPACK's QR is much cheaper per iteration than the trust-region-reflective solver.  The trust
         region is measured in z itself (``x_scale=1``: a step is a share of each parameter's range)
@@ -240,10 +240,7 @@ class Problem:
                 return self.profiles(out)
 
             if names:
-                res = optimize.least_squares(fun, z, method="lm", xtol=tol, ftol=tol, gtol=tol,
-                                             x_scale=1.0, max_nfev=max_iterations * (len(names) + 1),
-                                             workers=columns if self.stacked is not None else None)
-                z = res.x
+                z = levenberg_marquardt(fun, columns, z, tol, max_iterations * (len(names) + 1))
                 vals.update(zip(names, to_x(z)))
             r_lin, step, _, _ = self.profile(vals)
             if not self.families:
@@ -269,6 +266,51 @@ class Problem:
         for i, (r, h) in enumerate(zip(moved, steps)):
             jac[:, i] = (r - r0) / h * scale[i]
         return jac
+
+
+_REL_STEP = float(np.finfo(float).eps) ** 0.5     # SciPy's forward-difference step for float64 ('2-point')
+
+
+def levenberg_marquardt(fun, columns, z0: np.ndarray, tol: float, max_nfev: int) -> np.ndarray:
+    """The minimiser of ‖fun(z)‖² from *z0* by MINPACK's Levenberg–Marquardt (``lmder``, through
+    :func:`scipy.optimize.leastsq`), exactly as :func:`scipy.optimize.least_squares` runs it with ``method="lm"``,
+    ``x_scale=1.0`` (MINPACK's ``diag`` all ones), ``max_nfev`` and *tol* as ``ftol``, ``xtol`` and ``gtol``: the same
+    forward differences (step √ε·max(1, |z|), signed like z), their evaluations side by side through
+    ``columns(None, points)``.  ``least_squares`` evaluates the Jacobian once more after MINPACK returns, for its
+    result's gradient: one (k + 1)-column evaluation per fit that nothing here reads.  The last residual and the
+    last Jacobian are kept, so MINPACK asking again at the same point costs nothing.  Fewer residuals than
+    parameters: :func:`scipy.optimize.least_squares` (and its error)."""
+    last: dict = {}
+
+    def f(zz):
+        if "z" in last and np.array_equal(last["z"], zz):
+            return last["f"]
+        r = fun(zz)
+        last["z"], last["f"] = np.array(zz, float), r
+        return r
+
+    def jac(zz):
+        if "jz" in last and np.array_equal(last["jz"], zz):
+            return last["j"]
+        f0 = f(zz)
+        h = _REL_STEP * ((zz >= 0).astype(float) * 2 - 1) * np.maximum(1.0, np.abs(zz))
+        points = []
+        for i in range(zz.size):
+            x1 = np.array(zz, float)
+            x1[i] = zz[i] + h[i]
+            points.append(x1)
+        j = np.empty((np.size(f0), zz.size))
+        for i, fi in enumerate(columns(None, points)):
+            j[:, i] = (fi - f0) / ((zz[i] + h[i]) - zz[i])
+        last["jz"], last["j"] = np.array(zz, float), j
+        return j
+
+    z0 = np.asarray(z0, float)
+    if np.size(f(z0)) < z0.size:
+        return optimize.least_squares(fun, z0, method="lm", xtol=tol, ftol=tol, gtol=tol, x_scale=1.0,
+                                      max_nfev=max_nfev).x
+    return optimize.leastsq(f, z0, Dfun=jac, full_output=True, ftol=tol, xtol=tol, gtol=tol, maxfev=max_nfev,
+                            factor=100.0, diag=np.ones(z0.size))[0]
 
 
 _STACKS: dict = {}           # (id of the data, copies) → (the data, its stacked copies): the fits of one diagnosis
