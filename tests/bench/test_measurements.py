@@ -54,6 +54,37 @@ CASES = {
 }
 
 
+@pytest.mark.parametrize("cell", [" 1126 ", "1.126e3", "NA", "", "nan", "+inf", "11x6"])
+def test_columns_read_at_once_give_what_the_cells_one_by_one_give(tmp_path, monkeypatch, cell):
+    """Clean numeric columns are converted in one call; anything else falls back to the cells one by one.  Both
+    read every file the same: the same rows and values, or the same error (a missing or infinite cell, a typo)."""
+    import numpy as np
+
+    from rollaway.bench import measurements
+    path = _write(tmp_path, GOOD.replace("A,downhill,250,0,200,1126", f"A,downhill,250,0,200,{cell}", 1))
+
+    def read():
+        try:
+            return load_measurements(path)
+        except UserError as exc:
+            return str(exc)
+    fast = read()
+    monkeypatch.setattr(measurements, "_columns_at_once", lambda *a, **k: None)
+    slow = read()
+    if isinstance(slow, str):
+        assert fast == slow and "line 2, column 'torque_Nm'" in slow
+        return
+    assert float(slow.torque_Nm[0]) == 1126.0
+    for name in ("test_id", "direction", "hand_force_N", "time_s", "drum_temp_C", "torque_Nm"):
+        assert np.array_equal(getattr(fast, name), getattr(slow, name)), name
+
+
+def test_an_underscore_in_a_number_is_not_read_as_one(tmp_path):
+    """``float`` reads '1_126' as 1126; the bench readers (as pyarrow) do not: the cell is listed as not a number."""
+    with pytest.raises(UserError, match=r"line 2, column 'torque_Nm': '1_126' is not a number"):
+        load_measurements(_write(tmp_path, GOOD.replace(",1126", ",1_126", 1)))
+
+
 @pytest.mark.parametrize("case", list(CASES))
 def test_malformed_files_name_file_line_and_column(tmp_path, case, run_cli):
     text, line, col, what = CASES[case]
