@@ -108,7 +108,7 @@ class Problem:
             col = [s[k] for s in sets]
             if isinstance(x, np.ndarray) and x.ndim == 1:
                 vals[k] = np.concatenate(col)
-            elif x is not None and col.count(x) < c and np.ndim(x) == 0:    # count: by identity, else ==
+            elif x is not None and np.ndim(x) == 0 and col.count(x) < c:    # count: by identity, else ==
                 vals[k] = np.repeat(np.array(col, float), nt)                # per test of the stack
             else:
                 vals[k] = x
@@ -196,13 +196,13 @@ class Problem:
         """Fit the globals (and per-test families); *jacobian*: also the projected Jacobian for errors.
 
         The globals are fitted by MINPACK's Levenberg–Marquardt (:func:`levenberg_marquardt`: as
-        :func:`scipy.optimize.least_squares` with ``method="lm"`` runs it) in bounded-to-unbounded coordinates x = lo + (hi − lo)·(sin z + 1)/2 (the
-        MINUIT transformation, as lmfit uses): the residual has 2·N rows and only a few columns, where
-        MINPACK's QR is much cheaper per iteration than the trust-region-reflective solver.  The trust
-        region is measured in z itself (``x_scale=1``: a step is a share of each parameter's range)
-        rather than by MINPACK's running column norms (``x_scale="jac"``, which only grow: a parameter
-        the residual was steep in far from the optimum keeps a tiny trust radius, and a fit along a
-        curved valley, μ_d against the arm ratio and the eq. (24) slope, crawls to its budget).
+        :func:`scipy.optimize.least_squares` with ``method="lm"`` runs it) in bounded-to-unbounded coordinates x =
+        lo + (hi − lo)·(sin z + 1)/2 (the MINUIT transformation, as lmfit uses): the residual has 2·N rows and only
+        a few columns, where MINPACK's QR is much cheaper per iteration than the trust-region-reflective solver.
+        The trust region is measured in z itself (``x_scale=1``: a step is a share of each parameter's range) rather
+        than by MINPACK's running column norms (``x_scale="jac"``, which only grow: a parameter the residual was
+        steep in far from the optimum keeps a tiny trust radius, and a fit along a curved valley, μ_d against the
+        arm ratio and the eq. (24) slope, crawls to its budget).
         A pass stops when the relative reduction of the sum of squares or the relative step falls below
         *tol* (:data:`TOLERANCE`, 1e-6): the sum of ≈ 2·N squared standardised rows is then settled to
         ≈ 2·N·1e-6 (0.02 at 10 000 rows, against a selection threshold of 10), and misfit fits —
