@@ -27,7 +27,7 @@ import numpy as np
 
 from rollaway.effects import available_effects, get_effect
 from rollaway.identify.ambiguity import (MAX_RIVALS, WEAK_BIC, alternative_words, closest, rivals, set_rivals,
-                                        tell_apart, weak_alternatives)
+                                        weak_alternatives)
 from rollaway.identify.calibrate import FitResult, calibrate, evaluate
 from rollaway.identify.coarse import MAX_WINDOW_S, coarsen
 from rollaway.identify.drum import calibrate_drum, free_needed, predictive_covariance, recheck
@@ -45,6 +45,7 @@ from rollaway.identify.predictive_set import attach_predictive, interval_words
 from rollaway.identify.shape import (candidate_shapes, channel_alternatives, channel_rivals, loose_form,
                                      other_form_rivals, shape_rivals)
 from rollaway.identify.workers import fit_all
+from rollaway.identify.separating_test import tell_apart
 from rollaway.identify.selection import (BIC_THRESHOLD, SCREEN_ITERATIONS, Candidate, cv_score, eliminate, exchange,
                                          folds, forward_step, has_per_test, per_test_signature, structure)
 from rollaway.uncertainty.bands import validity
