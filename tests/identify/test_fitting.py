@@ -151,10 +151,30 @@ def test_levenberg_marquardt_is_least_squares_lm_without_its_last_jacobian(seed)
                         workers=columns)
     ref_columns = calls["columns"]
     calls.update(fun=0, columns=0)
-    z = fitting.levenberg_marquardt(fun, columns, z0, 1e-6, 100)
+    z, gave_up = fitting.levenberg_marquardt(fun, columns, z0, 1e-6, 100)
+    assert not gave_up
     assert np.array_equal(z, ref.x)
     assert calls["columns"] == ref_columns - 1
     assert calls["fun"] - 4 * calls["columns"] <= ref.nfev      # the residual at each point once
+
+
+@pytest.mark.parametrize("seed", range(3))
+def test_a_screen_that_cannot_reach_its_bar_is_given_up_and_one_that_can_is_untouched(seed):
+    """A misfit screen (a one-parameter creep law for a two-effect drum) against a bar far below its converged
+    BIC is abandoned early, above the bar; with the bar just above its converged BIC, or none, the fit is the same
+    bit for bit: the projection never stops a fit that would have reached its bar."""
+    data = generate(["modulus_sigmoid", "radiation"], sampling="1min", seed=40 + seed, n_forces=3)
+    kw = dict(statistics=False, max_iterations=6)
+    full = calibrate(data, ["modulus_temperature"], **kw)
+    same = calibrate(data, ["modulus_temperature"], give_up_bic=full.bic + 1.0, **kw)
+    assert "gave_up" not in same.fit_info
+    for k in full.values:
+        assert np.array_equal(np.asarray(full.values[k]), np.asarray(same.values[k])), k
+    best = calibrate(data, ["modulus_temperature", "radiation_cooling"], **kw)
+    assert best.bic < full.bic - 100.0                                  # the misfit is far from the truth's law
+    cut = calibrate(data, ["modulus_temperature"], give_up_bic=best.bic + 20.0, **kw)
+    assert cut.fit_info.get("gave_up") and cut.bic > best.bic + 20.0
+    assert cut.fit_info["stages"][0]["nfev"] < full.fit_info["stages"][0]["nfev"]
 
 
 @pytest.mark.parametrize("base", ["lining_creep", "friction_temperature", "radiation_cooling"])

@@ -29,7 +29,7 @@ import math
 
 import numpy as np
 
-from rollaway.identify.selection import BIC_THRESHOLD
+from rollaway.identify.selection import BIC_THRESHOLD, FUTILE_MARGIN
 from rollaway.identify.separating_test import tell_apart
 from rollaway.uncertainty.heldout import loto_scores
 
@@ -105,7 +105,9 @@ def set_rivals(data, plan, names: list[str], chosen: list[str], current, inflati
     """A verdict of several effects *chosen* (fit *current*): the sets with one of them exchanged for another
     catalogue effect that the data do not rule out — BIC within :data:`INDISTINGUISHABLE_BIC` (divided by the
     residual variance *inflation*, as :func:`rivals`) and a held-out prediction that does not prefer *current*
-    beyond :func:`preference_margin`.  Screened with *screen_iterations* iterations from *current*'s values (with the brake
+    beyond :func:`preference_margin`; or, as :func:`rivals` counts it, BIC short of the selection's own bar
+    (:data:`~rollaway.identify.selection.BIC_THRESHOLD`) against *current* where the held-out prediction prefers
+    the exchanged set (the evidence disagrees).  Screened with *screen_iterations* iterations from *current*'s values (with the brake
     parameters held at them, another law cannot be compared: μ_d and the eq. (24) law were fitted to the first), then
     refitted.  At most :data:`MAX_RIVALS`, best first, each as :func:`rivals` gives them plus
     ``"verdict_effects"`` (*chosen*)."""
@@ -116,26 +118,32 @@ def set_rivals(data, plan, names: list[str], chosen: list[str], current, inflati
     k = max(inflation, 1.0)
     swaps = [chosen[:i] + [new] + chosen[i + 1:] for i in range(len(chosen)) for new in names
              if new not in chosen and not get_effect(new).per_test_parameters()]
-    screens = fit_all(data, [(t, plan, dict(start=current.values, statistics=False, max_iterations=screen_iterations))
-                             for t in swaps])
+    bar = current.bic - BIC_THRESHOLD * k + FUTILE_MARGIN          # beyond it the screen cannot pass: abandoned
+    screens = fit_all(data, [(t, plan, dict(start=current.values, statistics=False, max_iterations=screen_iterations,
+                                            give_up_bic=bar)) for t in swaps])
     trials = [t for t, fit in zip(swaps, screens)
-              if (fit.bic - current.bic) / k < INDISTINGUISHABLE_BIC + 4.0]       # a loose screen
+              if (fit.bic - current.bic) / k < -BIC_THRESHOLD]       # a loose screen
     out = []
     for trial, fit in zip(trials, fit_all(data, [(t, plan, dict(start=current.values)) for t in trials])):
         dbic = (fit.bic - current.bic) / k
-        if fit.jacobian is None or dbic >= INDISTINGUISHABLE_BIC:
+        if fit.jacobian is None or dbic >= -BIC_THRESHOLD:
             continue
         elpd, se = heldout_difference(current, fit)
         margin = preference_margin(current, se)
-        if elpd <= -margin:
+        if elpd <= -margin or (dbic >= INDISTINGUISHABLE_BIC and elpd <= 0.0):
             continue
+        if dbic >= INDISTINGUISHABLE_BIC:
+            why = (f"BIC prefers the verdict by {dbic:.1f} but the held-out prediction prefers "
+                   f"{' + '.join(trial)}")
+        else:
+            why = ((f"BIC within {INDISTINGUISHABLE_BIC:g} ({dbic:+.1f})" if dbic > -INDISTINGUISHABLE_BIC else
+                    f"BIC lower than the verdict's by {-dbic:.1f}")
+                   + (" and the held-out prediction prefers it" if elpd > margin else
+                      " and the held-out prediction does not prefer either"))
         out.append({"kind": "rival", "effects": list(trial), "delta_bic": float(dbic), "heldout_elpd": elpd,
                     "heldout_se": se, "fit": fit, "verdict_effects": list(chosen),
-                    "why": (f"BIC within {INDISTINGUISHABLE_BIC:g} ({dbic:+.1f})" if dbic > -INDISTINGUISHABLE_BIC else
-                            f"BIC lower than the verdict's by {-dbic:.1f}")
-                           + (" and the held-out prediction prefers it" if elpd > margin else
-                              " and the held-out prediction does not prefer either")
-                           + f" (Δ log score {elpd:+.1f} ± {se:.1f})"})
+                    "why": why + f" (Δ log score {elpd:+.1f} ± {se:.1f})"
+                           + (": the evidence disagrees" if dbic >= INDISTINGUISHABLE_BIC else "")})
     return sorted(out, key=lambda a: a["delta_bic"])[:MAX_RIVALS]
 
 

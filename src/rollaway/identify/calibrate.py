@@ -168,7 +168,7 @@ def _noise_weights(data: Measurements, model: BenchModel, values: dict) -> tuple
 @single_blas_thread
 def calibrate(data: Measurements, effects=(), params=None, *, free=None, start: dict | None = None,
               model: BenchModel | None = None, per_test: bool = True, statistics: bool = True,
-              max_iterations: int | None = None) -> FitResult:
+              max_iterations: int | None = None, give_up_bic: float | None = None) -> FitResult:
     """Fit μ_d, h, every parameter of *effects* and each test's T_0 to *data* (both channels jointly).
 
     *free* restricts the fitted global names (others stay at *start*/neutral); *start* gives
@@ -176,19 +176,24 @@ def calibrate(data: Measurements, effects=(), params=None, *, free=None, start: 
     values as arrays in ``data.tests`` order).  With ``per_test=False`` the T_0 readings are
     taken as exact (the old behaviour, for comparisons only).  Samples are weighted by the noise
     model attached to *data* (``torque_sigma_Nm``, ``temp_sigma_C``) or one estimated from it.
+    *give_up_bic*: a fit that only matters below this BIC (a screen against a known one) is abandoned once its
+    remaining budget cannot bring it there (:func:`rollaway.identify.fitting.futile`): it then ends above it, not
+    converged (``fit_info["gave_up"]``).
     """
     from rollaway.identify import memo
     k = memo.key(data, effects, params, dict(free=free, start=start, model=model, per_test=per_test,
-                                             statistics=statistics, max_iterations=max_iterations))
+                                             statistics=statistics, max_iterations=max_iterations,
+                                             give_up_bic=give_up_bic))
     kept = memo.lookup(k)
     if kept is not None:
         return kept
-    fit = _calibrate(data, effects, params, free, start, model, per_test, statistics, max_iterations)
+    fit = _calibrate(data, effects, params, free, start, model, per_test, statistics, max_iterations, give_up_bic)
     memo.store(k, fit)
     return fit
 
 
-def _calibrate(data, effects, params, free, start, model, per_test, statistics, max_iterations) -> FitResult:
+def _calibrate(data, effects, params, free, start, model, per_test, statistics, max_iterations,
+               give_up_bic=None) -> FitResult:
     model = model or BenchModel(params, effects)
     init = model.initial_values()
     families = model.per_test_parameters() if per_test else []
@@ -208,9 +213,16 @@ def _calibrate(data, effects, params, free, start, model, per_test, statistics, 
         values[INITIAL_TEMP] = None
     w_t, w_q = _noise_weights(data, model, values)
     prob = Problem(model, data, names, families, values, w_t, w_q)
-    sol = prob.solve(init, jacobian=statistics, **({} if max_iterations is None else
-                                                    {"max_iterations": max_iterations}))
-    return _result(model, data, sol, prob, names, families, statistics)
+    bar = None
+    if give_up_bic is not None:          # the BIC's log-likelihood term, its penalty (FitResult.k) taken off
+        k = len(names) + sum(data.n_tests for f in families if f != INITIAL_TEMP)
+        bar = float(give_up_bic) - k * math.log(2 * len(data))
+    sol = prob.solve(init, jacobian=statistics, give_up_loglik=bar, **({} if max_iterations is None else
+                                                                       {"max_iterations": max_iterations}))
+    fit = _result(model, data, sol, prob, names, families, statistics)
+    if sol.gave_up:
+        fit.fit_info["gave_up"] = True
+    return fit
 
 
 def _result(model, data, sol, prob, names, families, statistics=True) -> FitResult:

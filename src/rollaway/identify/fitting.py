@@ -20,6 +20,7 @@ already accounted for (the Schur complement of the full normal matrix).
 from __future__ import annotations
 
 import functools
+import math
 from dataclasses import dataclass
 
 import numpy as np
@@ -64,6 +65,7 @@ class Solution:
     local_grad: list[np.ndarray]  # per family: ∂residual/∂(own test's value), one entry per row
     local_normal: np.ndarray | None   # (tests, m, m) per-test normal matrices of the families
     nfev: int
+    gave_up: bool = False         # abandoned as futile (Problem.solve's give_up_loglik): not converged
 
 
 class Problem:
@@ -192,7 +194,7 @@ class Problem:
         return [(r[i], steps[i], [gm[i, :, a] for a in range(m)], normal[i]) for i in range(n)]
 
     def solve(self, start: dict, tol: float | None = None, jacobian: bool = True,
-              max_iterations: int = MAX_ITERATIONS) -> Solution:
+              max_iterations: int = MAX_ITERATIONS, give_up_loglik: float | None = None) -> Solution:
         """Fit the globals (and per-test families); *jacobian*: also the projected Jacobian for errors.
 
         The globals are fitted by MINPACK's Levenberg–Marquardt (:func:`levenberg_marquardt`: as
@@ -208,6 +210,8 @@ class Problem:
         ≈ 2·N·1e-6 (0.02 at 10 000 rows, against a selection threshold of 10), and misfit fits —
         Gauss–Newton converges only linearly where the residual is large — no longer spend their last
         iterations on digits no criterion reads.
+        *give_up_loglik*: abandon the fit (:func:`futile`) once it cannot bring the information criteria's
+        log-likelihood term below this value within its remaining budget; None: never.
         """
         model, names = self.model, self.names
         tol = TOLERANCE if tol is None else tol
@@ -223,7 +227,8 @@ class Problem:
         def to_x(zz):
             return lo + (hi - lo) * (np.sin(zz) + 1.0) / 2.0
 
-        for _ in range(MAX_OUTER):
+        gave_up = False
+        for outer in range(MAX_OUTER):
             fixed = dict(vals)
 
             def fun(zz):
@@ -240,10 +245,13 @@ class Problem:
                 return self.profiles(out)
 
             if names:
-                z = levenberg_marquardt(fun, columns, z, tol, max_iterations * (len(names) + 1))
+                budget = max_iterations * (len(names) + 1)
+                later = (MAX_OUTER - outer - 1) * budget if self.families else 0
+                stop = None if give_up_loglik is None else futile(give_up_loglik, later)
+                z, gave_up = levenberg_marquardt(fun, columns, z, tol, budget, stop)
                 vals.update(zip(names, to_x(z)))
             r_lin, step, _, _ = self.profile(vals)
-            if not self.families:
+            if not self.families or gave_up:
                 break
             vals.update(step)
             r_new = self.raw(vals)
@@ -255,7 +263,7 @@ class Problem:
         x = np.array([vals[n] for n in names], float)
         scale = np.maximum(np.abs(x), 1e-3 * (hi - lo)) if names else np.zeros(0)
         jac = self.projected_jacobian(vals, r, lo, hi, scale) if (names and jacobian) else None
-        return Solution(vals, r_true, jac, scale, grads, normal, self.nfev)
+        return Solution(vals, r_true, jac, scale, grads, normal, self.nfev, gave_up)
 
     def projected_jacobian(self, vals, r0, lo, hi, scale) -> np.ndarray:
         """∂(projected residual)/∂(x/scale) by forward differences, stepping inwards at a bound."""
@@ -271,7 +279,36 @@ class Problem:
 _REL_STEP = float(np.finfo(float).eps) ** 0.5     # SciPy's forward-difference step for float64 ('2-point')
 
 
-def levenberg_marquardt(fun, columns, z0: np.ndarray, tol: float, max_nfev: int) -> np.ndarray:
+class _GiveUp(Exception):
+    """Raised inside MINPACK's Jacobian call to abandon a futile fit (:func:`futile`)."""
+
+
+def futile(give_up_loglik: float, later_calls: int = 0):
+    """The test :func:`levenberg_marquardt` applies at each iterate of a fit that only matters if it comes below
+    *give_up_loglik* (the information criteria's log-likelihood term n·ln(S_T/n) + n·ln(S_Q/n) of the temperature
+    and torque halves of the standardised residual): ``stop(history, r, calls_left) → bool``, true when even the
+    last iteration's fall of the sum of squares S (*history*: S at each iterate), kept up for every residual call
+    left (*calls_left* in this pass plus *later_calls* of the passes after it), would leave that term above the
+    bar, the fall shared by both halves in proportion.  A crawl along a valley (a misfit model) falls ever more
+    slowly, so the projection is generous: a fit it gives up would have ended above the bar.  Never before the
+    third iterate."""
+    def stop(history: list, r: np.ndarray, calls_left: int) -> bool:
+        if len(history) < 3:
+            return False
+        n = r.size // 2
+        s_t, s_q = float(r[:n] @ r[:n]), float(r[n:] @ r[n:])
+        if min(s_t, s_q) <= 0.0:
+            return False
+        reach = history[-1] - max(history[-2] - history[-1], 0.0) * (calls_left + later_calls)
+        if reach <= 0.0:
+            return False
+        now = n * math.log(s_t / n) + n * math.log(s_q / n)
+        return now + 2 * n * math.log(reach / history[-1]) > give_up_loglik
+    return stop
+
+
+def levenberg_marquardt(fun, columns, z0: np.ndarray, tol: float, max_nfev: int,
+                        stop=None) -> tuple[np.ndarray, bool]:
     """The minimiser of ‖fun(z)‖² from *z0* by MINPACK's Levenberg–Marquardt (``lmder``, through
     :func:`scipy.optimize.leastsq`), exactly as :func:`scipy.optimize.least_squares` runs it with ``method="lm"``,
     ``x_scale=1.0`` (MINPACK's ``diag`` all ones), ``max_nfev`` and *tol* as ``ftol``, ``xtol`` and ``gtol``: the same
@@ -279,8 +316,17 @@ def levenberg_marquardt(fun, columns, z0: np.ndarray, tol: float, max_nfev: int)
     ``columns(None, points)``.  ``least_squares`` evaluates the Jacobian once more after MINPACK returns, for its
     result's gradient: one (k + 1)-column evaluation per fit that nothing here reads.  The last residual and the
     last Jacobian are kept, so MINPACK asking again at the same point costs nothing.  Fewer residuals than
-    parameters: :func:`scipy.optimize.least_squares` (and its error)."""
+    parameters: :func:`scipy.optimize.least_squares` (and its error).
+
+    *stop* (:func:`futile`), asked at each iterate (where MINPACK wants its Jacobian), abandons the fit there.
+    Returns (the minimiser, or the iterate where *stop* abandoned it; whether it did)."""
     last: dict = {}
+    history: list = []
+    calls = [0]
+
+    def counted(zz):
+        calls[0] += 1
+        return f(zz)
 
     def f(zz):
         if "z" in last and np.array_equal(last["z"], zz):
@@ -293,6 +339,11 @@ def levenberg_marquardt(fun, columns, z0: np.ndarray, tol: float, max_nfev: int)
         if "jz" in last and np.array_equal(last["jz"], zz):
             return last["j"]
         f0 = f(zz)
+        if stop is not None:
+            history.append(float(f0 @ f0))
+            if stop(history, f0, max_nfev - calls[0]):
+                last["gave_up"] = np.array(zz, float)
+                raise _GiveUp
         h = _REL_STEP * ((zz >= 0).astype(float) * 2 - 1) * np.maximum(1.0, np.abs(zz))
         points = []
         for i in range(zz.size):
@@ -308,9 +359,12 @@ def levenberg_marquardt(fun, columns, z0: np.ndarray, tol: float, max_nfev: int)
     z0 = np.asarray(z0, float)
     if np.size(f(z0)) < z0.size:
         return optimize.least_squares(fun, z0, method="lm", xtol=tol, ftol=tol, gtol=tol, x_scale=1.0,
-                                      max_nfev=max_nfev).x
-    return optimize.leastsq(f, z0, Dfun=jac, full_output=True, ftol=tol, xtol=tol, gtol=tol, maxfev=max_nfev,
-                            factor=100.0, diag=np.ones(z0.size))[0]
+                                      max_nfev=max_nfev).x, False
+    try:
+        return optimize.leastsq(counted, z0, Dfun=jac, full_output=True, ftol=tol, xtol=tol, gtol=tol,
+                                maxfev=max_nfev, factor=100.0, diag=np.ones(z0.size))[0], False
+    except _GiveUp:
+        return last["gave_up"], True
 
 
 _STACKS: dict = {}           # (id of the data, copies) → (the data, its stacked copies): the fits of one diagnosis

@@ -21,6 +21,8 @@ from rollaway.uncertainty.heldout import FOLDS, LOO_TESTS, folds, loto_residuals
 BIC_THRESHOLD = -10.0        # "very strong" evidence (Kass & Raftery 1995)
 CV_TOP = 3                   # cross-validate at most this many candidates per step
 SCREEN_ITERATIONS = 6        # a ranking fit's MINPACK budget: SCREEN_ITERATIONS·(k + 1) residual calls
+FUTILE_MARGIN = 20.0         # a screen that only matters below a known BIC is abandoned when even its generous
+                             # projected end stays this far above it (rollaway.identify.fitting.futile) [assumed]
 SECOND_EFFECT_SE = 1.0       # a second effect beats the re-formed first by > 1 SE of the held-out difference,
                              # better in more than half of the tests [assumed; 2 SE lost true pairs on 8 tests]
 REFORM_ITERATIONS = 8        # Levenberg–Marquardt iterations per pass of the re-formed first effect (its BIC within
@@ -252,7 +254,8 @@ def exchange(data, params, names, chosen, current, struct, nq, nt, rounds: int =
         trials = [chosen[:i] + [new] + chosen[i + 1:] for i, new in swaps_tried]
         todo = [t for t in trials if tuple(t) not in last]
         done = dict(zip(map(tuple, todo), run_fits(data, [
-            (calibrate, (t, params), dict(start=current.values, statistics=False, max_iterations=SCREEN_ITERATIONS))
+            (calibrate, (t, params), dict(start=current.values, statistics=False, max_iterations=SCREEN_ITERATIONS,
+                                          give_up_bic=current.bic + FUTILE_MARGIN))
             for t in todo])))
         fits = [last[tuple(t)] if tuple(t) in last else done[tuple(t)] for t in trials]
         last = {}                             # a later round starts from a swapped selection
