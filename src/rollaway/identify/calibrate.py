@@ -178,14 +178,14 @@ def calibrate(data: Measurements, effects=(), params=None, *, free=None, start: 
     model attached to *data* (``torque_sigma_Nm``, ``temp_sigma_C``) or one estimated from it.
     *give_up_bic*: a fit that only matters below this BIC (a screen against a known one) is abandoned once its
     remaining budget cannot bring it there (:func:`rollaway.identify.fitting.futile`): it then ends above it, not
-    converged (``fit_info["gave_up"]``).
+    converged (``fit_info["gave_up"]``: the bar).
     """
     from rollaway.identify import memo
     k = memo.key(data, effects, params, dict(free=free, start=start, model=model, per_test=per_test,
-                                             statistics=statistics, max_iterations=max_iterations,
-                                             give_up_bic=give_up_bic))
-    kept = memo.lookup(k)
-    if kept is not None:
+                                             statistics=statistics, max_iterations=max_iterations))
+    kept = memo.lookup(k)            # a fit given up below one bar answers a call with that bar or a lower one
+    if kept is not None and (kept.fit_info.get("gave_up") is None
+                             or give_up_bic is not None and give_up_bic <= kept.fit_info["gave_up"]):
         return kept
     fit = _calibrate(data, effects, params, free, start, model, per_test, statistics, max_iterations, give_up_bic)
     memo.store(k, fit)
@@ -221,7 +221,7 @@ def _calibrate(data, effects, params, free, start, model, per_test, statistics, 
                                                                        {"max_iterations": max_iterations}))
     fit = _result(model, data, sol, prob, names, families, statistics)
     if sol.gave_up:
-        fit.fit_info["gave_up"] = True
+        fit.fit_info["gave_up"] = float(give_up_bic)
     return fit
 
 

@@ -31,6 +31,7 @@ import numpy as np
 from rollaway.model.drum_parameters import BASELINE_FREE, FREE_PARAMETERS, apply, value_of
 from rollaway.errors import UserError, suggest
 from rollaway.identify.calibrate import FitResult, calibrate, jacobian_at
+from rollaway.identify.fitting import FUTILE_MARGIN
 from rollaway.identify.workers import fit_all
 from rollaway.bench.measurements import Measurements
 from rollaway.identify.model import DrumPlan
@@ -295,8 +296,9 @@ def free_needed(drum: DrumCalibration, data: Measurements, effects: list, fit: F
     best = calibrate(data, effects, DrumPlan(drum.params, drum.free + tuple(held)), start=fit.values)
     while len(held) > 1:          # with one held left, holding it is *fit* itself: the test below decides
         trials = list(zip(fit_all(data, [(effects, DrumPlan(drum.params, drum.free + tuple(h for h in held if h != n)),
-                                          dict(start={k: v for k, v in best.values.items() if k != n})) for n in held]),
-                          held))
+                                          dict(start={k: v for k, v in best.values.items() if k != n},
+                                               give_up_bic=best.bic + FUTILE_MARGIN))   # must come below best
+                                         for n in held]), held))
         trial, name = min(trials, key=lambda t: t[0].bic)
         if trial.bic >= best.bic:
             break

@@ -279,6 +279,11 @@ class Problem:
 _REL_STEP = float(np.finfo(float).eps) ** 0.5     # SciPy's forward-difference step for float64 ('2-point')
 
 
+FUTILE_MARGIN = 20.0         # a fit that only matters below a known BIC is abandoned when even its generous
+                             # projected end (futile) stays this far above that BIC [assumed]
+FALLS = 3                    # a futile fit is judged by the largest of its last this many falls (see futile)
+
+
 class _GiveUp(Exception):
     """Raised inside MINPACK's Jacobian call to abandon a futile fit (:func:`futile`)."""
 
@@ -287,19 +292,21 @@ def futile(give_up_loglik: float, later_calls: int = 0):
     """The test :func:`levenberg_marquardt` applies at each iterate of a fit that only matters if it comes below
     *give_up_loglik* (the information criteria's log-likelihood term n·ln(S_T/n) + n·ln(S_Q/n) of the temperature
     and torque halves of the standardised residual): ``stop(history, r, calls_left) → bool``, true when even the
-    last iteration's fall of the sum of squares S (*history*: S at each iterate), kept up for every residual call
-    left (*calls_left* in this pass plus *later_calls* of the passes after it), would leave that term above the
-    bar, the fall shared by both halves in proportion.  A crawl along a valley (a misfit model) falls ever more
-    slowly, so the projection is generous: a fit it gives up would have ended above the bar.  Never before the
-    third iterate."""
+    largest of the last :data:`FALLS` falls of the sum of squares S between iterates (*history*: S at each), kept
+    up for every residual call left (*calls_left* in this pass plus *later_calls* of the passes after it), would
+    leave that term above the bar, the fall shared by both halves in proportion.  A crawl along a valley (a misfit
+    model) falls ever more slowly, so the projection is generous: a fit it gives up would have ended above the
+    bar.  Several falls, not the last: MINPACK's step can stall for an iterate (a shrunken trust region) and
+    then fall by hundreds again (measured on two-effect fits)."""
     def stop(history: list, r: np.ndarray, calls_left: int) -> bool:
-        if len(history) < 3:
+        if len(history) <= FALLS:
             return False
         n = r.size // 2
         s_t, s_q = float(r[:n] @ r[:n]), float(r[n:] @ r[n:])
         if min(s_t, s_q) <= 0.0:
             return False
-        reach = history[-1] - max(history[-2] - history[-1], 0.0) * (calls_left + later_calls)
+        fall = max(max(a - b for a, b in zip(history[-FALLS - 1:-1], history[-FALLS:])), 0.0)
+        reach = history[-1] - fall * (calls_left + later_calls)
         if reach <= 0.0:
             return False
         now = n * math.log(s_t / n) + n * math.log(s_q / n)

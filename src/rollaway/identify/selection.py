@@ -13,6 +13,7 @@ import numpy as np
 
 from rollaway.identify.workers import run_fits
 from rollaway.identify.calibrate import FitResult, calibrate
+from rollaway.identify.fitting import FUTILE_MARGIN
 from rollaway.bench.measurements import Measurements
 from rollaway.bench.noise import Noise
 from rollaway.identify.residuals import structure_tests
@@ -21,8 +22,6 @@ from rollaway.uncertainty.heldout import FOLDS, LOO_TESTS, folds, loto_residuals
 BIC_THRESHOLD = -10.0        # "very strong" evidence (Kass & Raftery 1995)
 CV_TOP = 3                   # cross-validate at most this many candidates per step
 SCREEN_ITERATIONS = 6        # a ranking fit's MINPACK budget: SCREEN_ITERATIONS·(k + 1) residual calls
-FUTILE_MARGIN = 20.0         # a screen that only matters below a known BIC is abandoned when even its generous
-                             # projected end stays this far above it (rollaway.identify.fitting.futile) [assumed]
 SECOND_EFFECT_SE = 1.0       # a second effect beats the re-formed first by > 1 SE of the held-out difference,
                              # better in more than half of the tests [assumed; 2 SE lost true pairs on 8 tests]
 REFORM_ITERATIONS = 8        # Levenberg–Marquardt iterations per pass of the re-formed first effect (its BIC within
