@@ -290,27 +290,35 @@ class _GiveUp(Exception):
 
 def futile(give_up_loglik: float, later_calls: int = 0):
     """The test :func:`levenberg_marquardt` applies at each iterate of a fit that only matters if it comes below
-    *give_up_loglik* (the information criteria's log-likelihood term n·ln(S_T/n) + n·ln(S_Q/n) of the temperature
-    and torque halves of the standardised residual): ``stop(history, r, calls_left) → bool``, true when even the
-    largest of the last :data:`FALLS` falls of the sum of squares S between iterates (*history*: S at each), kept
-    up for every residual call left (*calls_left* in this pass plus *later_calls* of the passes after it), would
-    leave that term above the bar, the fall shared by both halves in proportion.  A crawl along a valley (a misfit
-    model) falls ever more slowly, so the projection is generous: a fit it gives up would have ended above the
-    bar.  Several falls, not the last: MINPACK's step can stall for an iterate (a shrunken trust region) and
-    then fall by hundreds again (measured on two-effect fits)."""
+    *give_up_loglik* (the information criteria's log-likelihood term L = n·ln(S_T/n) + n·ln(S_Q/n) of the
+    temperature and torque halves of the standardised residual): ``stop(history, r, calls_left) → bool``, true when
+    L would stay above the bar even if it kept falling, for every residual call left (*calls_left* in this pass
+    plus *later_calls* of the passes after it), at the largest of its last :data:`FALLS` falls between iterates —
+    or at what the largest of the last falls of the sum of squares S = S_T + S_Q (*history*: S at each iterate)
+    would take off it, whichever is more.  Both, since MINPACK lowers S while L, the criteria's term, can rise or
+    fall faster as the two halves trade.  A crawl along a valley (a misfit model) falls ever more slowly, so the
+    projection is generous: a fit it gives up would have ended above the bar.  Several falls, not the last: a step
+    can stall for an iterate (a shrunken trust region) and then fall by hundreds again (measured on two-effect
+    fits)."""
+    terms: list = []
+
     def stop(history: list, r: np.ndarray, calls_left: int) -> bool:
-        if len(history) <= FALLS:
-            return False
         n = r.size // 2
         s_t, s_q = float(r[:n] @ r[:n]), float(r[n:] @ r[n:])
         if min(s_t, s_q) <= 0.0:
+            terms.clear()
             return False
-        fall = max(max(a - b for a, b in zip(history[-FALLS - 1:-1], history[-FALLS:])), 0.0)
-        reach = history[-1] - fall * (calls_left + later_calls)
+        terms.append(n * math.log(s_t / n) + n * math.log(s_q / n))
+        if len(history) <= FALLS or len(terms) <= FALLS:
+            return False
+        calls = calls_left + later_calls
+
+        def fall(x):
+            return max(max(a - b for a, b in zip(x[-FALLS - 1:-1], x[-FALLS:])), 0.0) * calls
+        reach = history[-1] - fall(history)
         if reach <= 0.0:
             return False
-        now = n * math.log(s_t / n) + n * math.log(s_q / n)
-        return now + 2 * n * math.log(reach / history[-1]) > give_up_loglik
+        return terms[-1] - max(fall(terms), 2 * n * math.log(history[-1] / reach)) > give_up_loglik
     return stop
 
 
