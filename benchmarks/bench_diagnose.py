@@ -5,6 +5,7 @@
     PYTHONPATH=src python benchmarks/bench_diagnose.py --scaling          # in-process scaling with tests and rows
     PYTHONPATH=src python benchmarks/bench_diagnose.py --held-out         # the slow kinds of set, goal ≤ 5 s
     PYTHONPATH=src python benchmarks/bench_diagnose.py --stress           # 40 stress sets, goal ≤ 5 s each
+    PYTHONPATH=src python benchmarks/bench_diagnose.py --two-effect 0:216 # the two-effect held-out campaigns
 
 Each log is 8 tests of an hour (``rollaway synth``, hidden lining_creep unless ``--effect``) written as a CSV
 under a temporary folder; the CLI runs in a fresh interpreter and its peak resident memory is that process's
@@ -174,18 +175,30 @@ def stress_sets():
     return out
 
 
-def stress() -> None:
-    """Wall seconds of ``rollaway diagnose`` through the CLI on each of :func:`stress_sets`, their mean and the
-    slowest, and the reference unit measured before and after."""
+def two_effect_sets(first: int, stop: int):
+    """(name, data maker) of the two-effect held-out campaigns *first* … *stop* − 1 of
+    ``tests/uncertainty/band_questions.py`` (a random pair of catalogue and other forms, 5- and 1-min sampling,
+    other drums, one direction in every third)."""
+    sys.path.insert(0, str(Path(__file__).resolve().parents[1]))
+    from tests.uncertainty.band_questions import two_effect_data
+    return [(f"t{i:03d} " + "+".join(map(str, two_effect_data(i)[0])), lambda i=i: two_effect_data(i)[5])
+            for i in range(first, stop)]
+
+
+def stress(sets=None) -> None:
+    """Wall seconds of ``rollaway diagnose`` through the CLI on each of *sets* ((name, data maker); default
+    :func:`stress_sets`), their mean and the slowest, and the reference unit measured before and after."""
     from reference import reference_unit_s
     sys.path.insert(0, str(Path(__file__).resolve().parents[1]))
     from tests.identify.bench_generator import generate
+    if sets is None:
+        sets = [(name, lambda kw=kw: generate(**kw)) for name, kw in stress_sets()]
     ref = reference_unit_s()
     print(f"reference unit (300 000 raw mj_step): {ref:.2f} s; goal: ≤ 5 s per set")
     walls = []
     with tempfile.TemporaryDirectory() as tmp:
-        for name, kw in stress_sets():
-            data = generate(**kw)
+        for name, make in sets:
+            data = make()
             path = Path(tmp) / "set.csv"
             data.to_csv(path)
             t = time.perf_counter()
@@ -204,9 +217,14 @@ def main(argv=None):
     ap.add_argument("--scaling", action="store_true", help="in-process scaling with tests and rows instead")
     ap.add_argument("--held-out", action="store_true", help="the slow kinds of set from the independent generator")
     ap.add_argument("--stress", action="store_true", help="40 stress sets from the independent generator")
+    ap.add_argument("--two-effect", metavar="FIRST:STOP", help="the two-effect held-out campaigns FIRST … STOP − 1")
     a = ap.parse_args(argv)
     if a.stress:
         stress()
+        return
+    if a.two_effect:
+        first, _, stop = a.two_effect.partition(":")
+        stress(two_effect_sets(int(first), int(stop or int(first) + 1)))
         return
     if a.held_out:
         held_out()

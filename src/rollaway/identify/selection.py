@@ -150,6 +150,8 @@ def forward_step(data, params, names, current: FitResult, chosen: list[str], ste
                  per_test_ok: bool = True, screen: bool = False, held_brake=()):
     """Fit every remaining candidate on top of *current*; cross-validate the strong ones.  Effects
     with per-test parameters are tried only when *per_test_ok* (:func:`per_test_signature`).
+    After the first step (whose table reports every candidate's ΔBIC) a screen that cannot come within
+    :data:`BIC_THRESHOLD` of *current* is given up (:func:`rollaway.identify.fitting.futile`).
     *screen*: fit the candidates with the brake parameters held, then refit the best few jointly
     (faster, but an effect the calibrated drum has partly absorbed can be missed).  *held_brake*: brake
     parameters the drum calibration held as not needed; a candidate that changes the law of some of them (the
@@ -168,7 +170,9 @@ def forward_step(data, params, names, current: FitResult, chosen: list[str], ste
                 calls.append((_per_test_screen, (chosen + [name], h, plan), dict(start=start)))
             elif held is params:                            # a short joint fit ranks; the best few are finished below
                 h, k = plan, 0
-                calls.append((calibrate, (chosen + [name], plan), dict(start=start, max_iterations=SCREEN_ITERATIONS)))
+                bar = {} if step == 1 else {"give_up_bic": current.bic + BIC_THRESHOLD + FUTILE_MARGIN}
+                calls.append((calibrate, (chosen + [name], plan), dict(start=start, max_iterations=SCREEN_ITERATIONS,
+                                                                       **bar)))
             else:
                 h, k = held, n_held
                 calls.append((calibrate, (chosen + [name], held), dict(start=start)))     # brake parameters held
