@@ -29,7 +29,7 @@ import math
 
 import numpy as np
 
-from rollaway.identify.fitting import FUTILE_MARGIN
+from rollaway.identify.solver import FUTILE_MARGIN
 from rollaway.identify.selection import BIC_THRESHOLD
 from rollaway.identify.separating_test import tell_apart
 from rollaway.uncertainty.heldout import loto_scores

@@ -177,7 +177,7 @@ def calibrate(data: Measurements, effects=(), params=None, *, free=None, start: 
     taken as exact (the old behaviour, for comparisons only).  Samples are weighted by the noise
     model attached to *data* (``torque_sigma_Nm``, ``temp_sigma_C``) or one estimated from it.
     *give_up_bic*: a fit that only matters below this BIC (a screen against a known one) is abandoned once its
-    remaining budget cannot bring it there (:func:`rollaway.identify.fitting.futile`): it then ends above it, not
+    remaining budget cannot bring it there (:func:`rollaway.identify.solver.futile`): it then ends above it, not
     converged (``fit_info["gave_up"]``: the bar).
     """
     from rollaway.identify import memo

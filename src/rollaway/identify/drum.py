@@ -31,7 +31,7 @@ import numpy as np
 from rollaway.model.drum_parameters import BASELINE_FREE, FREE_PARAMETERS, apply, value_of
 from rollaway.errors import UserError, suggest
 from rollaway.identify.calibrate import FitResult, calibrate, jacobian_at
-from rollaway.identify.fitting import FUTILE_MARGIN
+from rollaway.identify.solver import FUTILE_MARGIN
 from rollaway.identify.workers import fit_all
 from rollaway.bench.measurements import Measurements
 from rollaway.identify.model import DrumPlan

@@ -13,7 +13,7 @@ import numpy as np
 
 from rollaway.identify.workers import run_fits
 from rollaway.identify.calibrate import FitResult, calibrate
-from rollaway.identify.fitting import FUTILE_MARGIN
+from rollaway.identify.solver import FUTILE_MARGIN
 from rollaway.bench.measurements import Measurements
 from rollaway.bench.noise import Noise
 from rollaway.identify.residuals import structure_tests
@@ -151,7 +151,7 @@ def forward_step(data, params, names, current: FitResult, chosen: list[str], ste
     """Fit every remaining candidate on top of *current*; cross-validate the strong ones.  Effects
     with per-test parameters are tried only when *per_test_ok* (:func:`per_test_signature`).
     After the first step (whose table reports every candidate's ΔBIC) a screen that cannot come within
-    :data:`BIC_THRESHOLD` of *current* is given up (:func:`rollaway.identify.fitting.futile`).
+    :data:`BIC_THRESHOLD` of *current* is given up (:func:`rollaway.identify.solver.futile`).
     *screen*: fit the candidates with the brake parameters held, then refit the best few jointly
     (faster, but an effect the calibrated drum has partly absorbed can be missed).  *held_brake*: brake
     parameters the drum calibration held as not needed; a candidate that changes the law of some of them (the
