@@ -57,3 +57,4 @@ def test_a_torque_column_of_zeros_is_one_line_naming_the_column(tmp_path, run_cl
     code, out, err = run_cli(command[0], csv, *command[1:])
     assert code == 2, (out, err)
     assert "Traceback" not in err and f"{csv}, column 'torque_Nm': 0 in every row" in err
+

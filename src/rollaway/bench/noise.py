@@ -24,9 +24,10 @@ import math
 from dataclasses import dataclass
 
 import numpy as np
-from scipy import optimize, special
+from scipy import special
 
 from rollaway.errors import UserError
+from rollaway.scipy_direct import nnls
 
 CLIP = 3.5                 # values beyond ±3.5 σ are outliers (a spike, the samples around a step)
 # E[Z²·1(|Z| < c)] for standard normal Z: keeps the trimmed mean square Gaussian-consistent
@@ -136,7 +137,7 @@ def _scale(e: np.ndarray, level: np.ndarray, relative: bool) -> tuple[float, flo
         e2 = clip_square(e / np.sqrt(sig2)) * sig2
         if relative:
             wgt = 1.0 / sig2
-            (a2, b2), _ = optimize.nnls(design * wgt[:, None], e2 * wgt)
+            a2, b2 = nnls(design * wgt[:, None], e2 * wgt)
             if a2 + b2 * float(np.mean(level ** 2)) <= 0:
                 a2, b2 = float(np.mean(e2)), 0.0
         else:

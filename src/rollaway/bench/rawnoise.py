@@ -18,9 +18,10 @@ import math
 from dataclasses import replace
 
 import numpy as np
-from scipy import optimize, special
+from scipy import special
 
 from rollaway.bench.noise import Noise, sample_sigma
+from rollaway.scipy_direct import nnls
 
 # per-window sums, as in rollaway.bench.reduction: n, Σt, ΣT, ΣM, Σambient, n_e, Σe_T², Σe_M²
 N, ST, STEMP, SQ, SAMB, NE, E2T, E2Q = range(8)
@@ -49,7 +50,7 @@ def raw_noise(sums: list[np.ndarray], e4: list[np.ndarray]) -> tuple[Noise, Nois
     design = np.column_stack([np.ones_like(level), level ** 2])
     for _ in range(4):      # weighted least squares of the mean squares (variance ∝ σ⁴/n_e)
         wgt = np.sqrt(ne) / np.maximum(a2 + b2 * level ** 2, 1e-300)
-        (a2, b2), _ = optimize.nnls(design * wgt[:, None], mean_e2 * wgt)
+        a2, b2 = nnls(design * wgt[:, None], mean_e2 * wgt)
         if a2 + b2 * float(np.mean(level ** 2)) <= 0:
             a2, b2 = float(s[:, E2Q].sum()) / total, 0.0
             break

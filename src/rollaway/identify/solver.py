@@ -7,7 +7,8 @@ from __future__ import annotations
 import math
 
 import numpy as np
-from scipy import optimize
+
+from rollaway.scipy_direct import optimize_extension
 
 _REL_STEP = float(np.finfo(float).eps) ** 0.5     # SciPy's forward-difference step for float64 ('2-point')
 
@@ -57,8 +58,8 @@ def futile(give_up_loglik: float, later_calls: int = 0):
 
 def levenberg_marquardt(fun, columns, z0: np.ndarray, tol: float, max_nfev: int,
                         stop=None) -> tuple[np.ndarray, bool]:
-    """The minimiser of ‖fun(z)‖² from *z0* by MINPACK's Levenberg–Marquardt (``lmder``, through
-    :func:`scipy.optimize.leastsq`), exactly as :func:`scipy.optimize.least_squares` runs it with ``method="lm"``,
+    """The minimiser of ‖fun(z)‖² from *z0* by MINPACK's Levenberg–Marquardt (``lmder``, called as
+    :func:`scipy.optimize.leastsq` calls it), exactly as :func:`scipy.optimize.least_squares` runs it with ``method="lm"``,
     ``x_scale=1.0`` (MINPACK's ``diag`` all ones), ``max_nfev`` and *tol* as ``ftol``, ``xtol`` and ``gtol``: the same
     forward differences (step √ε·max(1, |z|), signed like z), their evaluations side by side through
     ``columns(None, points)``.  ``least_squares`` evaluates the Jacobian once more after MINPACK returns, for its
@@ -104,15 +105,19 @@ def levenberg_marquardt(fun, columns, z0: np.ndarray, tol: float, max_nfev: int,
         last["jz"], last["j"] = np.array(zz, float), j
         return j
 
-    z0 = np.asarray(z0, float)
-    if np.size(f(z0)) < z0.size:
+    z0 = np.asarray(z0, float).ravel()
+    if np.size(counted(z0)) < z0.size:     # counted: as leastsq's own check of the function's shape
+        from scipy import optimize
         return optimize.least_squares(fun, z0, method="lm", xtol=tol, ftol=tol, gtol=tol, x_scale=1.0,
                                       max_nfev=max_nfev).x, False
-    try:
-        return optimize.leastsq(counted, z0, Dfun=jac, full_output=True, ftol=tol, xtol=tol, gtol=tol,
-                                maxfev=max_nfev, factor=100.0, diag=np.ones(z0.size))[0], False
+    try:                                    # scipy.optimize.leastsq's calls, without its covariance and messages
+        jac(z0)                             # its check of the Jacobian's shape (kept: MINPACK asks for it next)
+        x, info = optimize_extension("_minpack")._lmder(counted, jac, z0, (), 0, 0, tol, tol, tol, max_nfev, 100.0, np.ones(z0.size))
     except _GiveUp:
         return last["gave_up"], True
+    if info == 0:
+        raise TypeError("MINPACK lmder: improper input parameters")
+    return x, False
 
 
 __all__ = ["FUTILE_MARGIN", "futile", "levenberg_marquardt"]
