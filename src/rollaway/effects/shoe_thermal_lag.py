@@ -19,12 +19,16 @@ def lagged_temperature_C(time_s, initial_temp_C, ambient_C, drum_time_constant_s
     if tau.ndim == 0 and tau_l.ndim == 0 and tau_l > 0.0 and not abs(tau - tau_l) < 1e-6 * tau:
         with np.errstate(over="ignore"):    # one lag for every sample (a fit): only its branch below
             return ambient_C + amp * (tau * np.exp(-t / tau) - tau_l * np.exp(-t / tau_l)) / (tau - tau_l)
-    plain = ambient_C + amp * np.exp(-t / tau)
-    equal = ambient_C + amp * (1.0 + t / tau) * np.exp(-t / tau)
+    decay = np.exp(-t / tau)
     with np.errstate(divide="ignore", invalid="ignore", over="ignore"):
-        lag = ambient_C + amp * (tau * np.exp(-t / tau) - tau_l * np.exp(-t / np.where(tau_l > 0, tau_l, 1.0))) \
-            / (tau - tau_l)
-    return np.where(tau_l <= 0.0, plain, np.where(np.abs(tau - tau_l) < 1e-6 * tau, equal, lag))
+        out = ambient_C + amp * (tau * decay - tau_l * np.exp(-t / np.where(tau_l > 0, tau_l, 1.0))) / (tau - tau_l)
+    equal = np.abs(tau - tau_l) < 1e-6 * tau          # each other branch only where some sample takes it
+    if np.any(equal):
+        out = np.where(equal, ambient_C + amp * (1.0 + t / tau) * decay, out)
+    plain = tau_l <= 0.0
+    if np.any(plain):
+        out = np.where(plain, ambient_C + amp * decay, out)
+    return out
 
 
 class ShoeThermalLag(Effect):
