@@ -41,9 +41,9 @@ def test_levenberg_marquardt_is_least_squares_lm_without_its_last_jacobian(seed)
 @pytest.mark.parametrize("seed", range(3))
 def test_a_screen_that_cannot_reach_its_bar_is_given_up_and_one_that_can_is_untouched(seed):
     """A misfit screen (a modulus law for a creeping, radiating drum: it crawls to its budget) against a bar far
-    below its end (the right pair's BIC) is abandoned early, above the bar; with the bar FUTILE_MARGIN above its end
-    (a caller's bar is its threshold plus that margin) the fit is the same bit for bit: the projection never stops a
-    fit that would have come below the caller's threshold."""
+    below its end (the right pair's BIC) is abandoned early (within a third of the full fit's evaluations), above
+    the bar; with the bar FUTILE_MARGIN above its end (a caller's bar is its threshold plus that margin) the fit is
+    the same bit for bit: the projection never stops a fit that would have come below the caller's threshold."""
     data = generate(["creep_exponential", "radiation"], sampling="1min", seed=50 + seed, n_forces=4)
     kw = dict(statistics=False, max_iterations=6)
     best = calibrate(data, ["lining_creep", "radiation_cooling"], **kw)
@@ -56,4 +56,4 @@ def test_a_screen_that_cannot_reach_its_bar_is_given_up_and_one_that_can_is_unto
         assert np.array_equal(np.asarray(full.values[k]), np.asarray(same.values[k])), k
     cut = calibrate(data, ["modulus_temperature", "radiation_cooling"], give_up_bic=best.bic + 20.0, **kw)
     assert cut.fit_info.get("gave_up") == best.bic + 20.0 and cut.bic > best.bic + 20.0
-    assert cut.fit_info["stages"][0]["nfev"] < full.fit_info["stages"][0]["nfev"] / 4
+    assert cut.fit_info["stages"][0]["nfev"] < full.fit_info["stages"][0]["nfev"] / 3

@@ -85,6 +85,7 @@ class Problem:
         self._copies = {len(self.families) + 1: self.stacked} if batch else {}   # stacked data by copies
         self._tiled = {}         # the weights tiled like the stacked data, by copies
         self._cells = {}         # (value set, test) of every row of :meth:`_project_many`, by value sets
+        self._profiled = None    # (values, residuals of their family sets) of the last :meth:`profile`
 
     def raw(self, vals: dict) -> np.ndarray:
         self.nfev += 1
@@ -131,6 +132,7 @@ class Problem:
             rs = self.raw_stacked(sets)
         else:
             rs = [self.raw(v) for v in sets]
+        self._profiled = (dict(vals), rs)      # the Jacobian at this point (linearised_profiles) starts from them
         return self._project(vals, rs)
 
     def _family_sets(self, vals: dict) -> list[dict]:
@@ -150,6 +152,44 @@ class Problem:
             self.stacked = None
             return [self.profile(v)[0] for v in many]
         return [p[0] for p in self._project_many(many, np.stack(rs).reshape(len(many), k, -1))]
+
+    def linearised_profiles(self, base: dict, many: list[dict]) -> list[np.ndarray]:
+        """The projected residual at each value set of *many* (a finite-difference Jacobian's points around
+        *base*) to first order in the per-test families: ``f(base) + P·(r(v) − r(base))``, P the projection off
+        the families' columns G of each test at *base* (one Gauss–Newton step per test, as :meth:`profile`,
+        with G held at *base*).  The difference quotients are then Kaufman's variable-projection Jacobian
+        (Kaufman 1975, "A variable projection method for solving separable nonlinear least squares problems",
+        BIT 15, 49–57): the term of G's own change is dropped, so each point costs one copy of the data instead
+        of one per family and the steps MINPACK takes from it are those of a Gauss–Newton method on the
+        projected residual (Ruhe & Wedin 1980, SIAM Review 22, 318–337).  The residuals themselves
+        (:meth:`profile`) and the Jacobian of the reported errors (:meth:`projected_jacobian`) stay exact."""
+        if not self.families or not many:
+            return self.profiles(many)
+        k = len(self.families) + 1
+        kept = self._profiled if self._profiled is not None and _same_values(self._profiled[0], base) else None
+        sets = ([] if kept else self._family_sets(base)) + list(many)      # MINPACK asks at the point it just had
+        rs = None
+        if self.stacked is not None and all(np.ndim(v[f]) == 1 for v in sets for f in self.families):
+            try:
+                rs = self.raw_stacked(sets)
+            except UserError:      # a plugin's hook that takes its values as numbers only: one call per set
+                self.stacked = None
+        if rs is None:
+            rs = [self.raw(v) for v in sets]
+        if kept:
+            rs = list(kept[1]) + list(rs)
+        f0, _, grads, normal = self._project_many([base], np.stack(rs[:k])[None])[0]
+        diff = np.stack(rs[k:]) - rs[0]                                         # sets × rows
+        n, nt, m = len(many), self.data.n_tests, k - 1
+        cell = self._cells.get(n)
+        if cell is None:
+            cell = self._cells[n] = (np.arange(n)[:, None] * nt + self.rows_test[None, :]).ravel()
+        rhs = np.stack([np.bincount(cell, (g[None, :] * diff).ravel(), n * nt).reshape(n, nt) for g in grads],
+                       axis=2)                                                  # sets × tests × m
+        ridge = 1e-12 * np.maximum(np.trace(normal, axis1=1, axis2=2), 1e-300)[:, None, None] * np.eye(m)
+        coef = np.linalg.solve((normal + ridge + 1e-300 * np.eye(m))[None], rhs[..., None])[..., 0]
+        proj = diff - sum(g[None, :] * coef[:, self.rows_test, a] for a, g in enumerate(grads))
+        return list(f0[None, :] + proj)
 
     def _project(self, vals: dict, rs: list[np.ndarray]):
         """The projected residual of :meth:`profile` from the residuals *rs* of :meth:`_family_sets` (*vals*)."""
@@ -235,13 +275,13 @@ class Problem:
                 v.update(zip(names, to_x(zz)))
                 return self.profile(v)[0]
 
-            def columns(_fun, zs):        # the difference quotients' evaluations, side by side
-                out = []
-                for zz in zs:
-                    v = dict(fixed)
-                    v.update(zip(names, to_x(zz)))
-                    out.append(v)
-                return self.profiles(out)
+            def values_at(zz):
+                v = dict(fixed)
+                v.update(zip(names, to_x(zz)))
+                return v
+
+            def columns(z_base, zs):      # the difference quotients' evaluations, side by side (Kaufman)
+                return self.linearised_profiles(values_at(z_base), [values_at(zz) for zz in zs])
 
             if names:
                 budget = max_iterations * (len(names) + 1)
@@ -273,6 +313,22 @@ class Problem:
         for i, (r, h) in enumerate(zip(moved, steps)):
             jac[:, i] = (r - r0) / h * scale[i]
         return jac
+
+
+def _same_values(a: dict, b: dict) -> bool:
+    """The same value sets (numbers and per-test arrays), element for element."""
+    if a.keys() != b.keys():
+        return False
+    for k, x in a.items():
+        y = b[k]
+        if x is y:
+            continue
+        if isinstance(x, np.ndarray) or isinstance(y, np.ndarray):
+            if not np.array_equal(x, y):
+                return False
+        elif x != y:
+            return False
+    return True
 
 
 _STACKS: dict = {}           # (id of the data, copies) → (the data, its stacked copies): the fits of one diagnosis

@@ -62,7 +62,7 @@ def levenberg_marquardt(fun, columns, z0: np.ndarray, tol: float, max_nfev: int,
     :func:`scipy.optimize.leastsq` calls it), exactly as :func:`scipy.optimize.least_squares` runs it with ``method="lm"``,
     ``x_scale=1.0`` (MINPACK's ``diag`` all ones), ``max_nfev`` and *tol* as ``ftol``, ``xtol`` and ``gtol``: the same
     forward differences (step √ε·max(1, |z|), signed like z), their evaluations side by side through
-    ``columns(None, points)``.  ``least_squares`` evaluates the Jacobian once more after MINPACK returns, for its
+    ``columns(z, points)`` (*z* the point they are taken at).  ``least_squares`` evaluates the Jacobian once more after MINPACK returns, for its
     result's gradient: one (k + 1)-column evaluation per fit that nothing here reads.  The last residual and the
     last Jacobian are kept, so MINPACK asking again at the same point costs nothing.  Fewer residuals than
     parameters: :func:`scipy.optimize.least_squares` (and its error).
@@ -100,7 +100,7 @@ def levenberg_marquardt(fun, columns, z0: np.ndarray, tol: float, max_nfev: int,
             x1[i] = zz[i] + h[i]
             points.append(x1)
         j = np.empty((np.size(f0), zz.size))
-        for i, fi in enumerate(columns(None, points)):
+        for i, fi in enumerate(columns(zz, points)):
             j[:, i] = (fi - f0) / ((zz[i] + h[i]) - zz[i])
         last["jz"], last["j"] = np.array(zz, float), j
         return j
