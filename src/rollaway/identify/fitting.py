@@ -155,32 +155,28 @@ class Problem:
 
     def linearised_profiles(self, base: dict, many: list[dict]) -> list[np.ndarray]:
         """The projected residual at each value set of *many* (a finite-difference Jacobian's points around
-        *base*) to first order in the per-test families: ``f(base) + P·(r(v) − r(base))``, P the projection off
-        the families' columns G of each test at *base* (one Gauss–Newton step per test, as :meth:`profile`,
-        with G held at *base*).  The difference quotients are then Kaufman's variable-projection Jacobian
-        (Kaufman 1975, "A variable projection method for solving separable nonlinear least squares problems",
-        BIT 15, 49–57): the term of G's own change is dropped, so each point costs one copy of the data instead
-        of one per family and the steps MINPACK takes from it are those of a Gauss–Newton method on the
-        projected residual (Ruhe & Wedin 1980, SIAM Review 22, 318–337).  The residuals themselves
-        (:meth:`profile`) and the Jacobian of the reported errors (:meth:`projected_jacobian`) stay exact."""
+        *base*) to first order: ``f(base) + P·(r(v*) − r(base*))``, where f(base) is :meth:`profile`'s (exact),
+        * puts the per-test families at base's Gauss–Newton step (their best values for base) and P projects off
+        their columns G at base, test by test.  The difference quotients are then Kaufman's variable-projection
+        Jacobian (Kaufman 1975, "A variable projection method for solving separable nonlinear least squares
+        problems", BIT 15, 49–57): of the derivative of the projection, the term proportional to the projected
+        residual is dropped (exactly zero for a model that fits), the one along the families' step is kept, and
+        the gradient at a stationary point is the exact one (Ruhe & Wedin 1980, "Algorithms for separable nonlinear
+        least squares problems", SIAM Review 22, 318–337), so the fits end where :meth:`profiles`' exact quotients
+        take them, within MINPACK's tolerance.  Each point costs one copy of the data instead of one per family
+        and one more (about half the rows of a Jacobian); misfit models, whose residual is large, may take more
+        iterations.  The residuals themselves (:meth:`profile`) and the Jacobian of the reported errors
+        (:meth:`projected_jacobian`) stay exact."""
         if not self.families or not many:
             return self.profiles(many)
-        k = len(self.families) + 1
-        kept = self._profiled if self._profiled is not None and _same_values(self._profiled[0], base) else None
-        sets = ([] if kept else self._family_sets(base)) + list(many)      # MINPACK asks at the point it just had
-        rs = None
-        if self.stacked is not None and all(np.ndim(v[f]) == 1 for v in sets for f in self.families):
-            try:
-                rs = self.raw_stacked(sets)
-            except UserError:      # a plugin's hook that takes its values as numbers only: one call per set
-                self.stacked = None
-        if rs is None:
-            rs = [self.raw(v) for v in sets]
-        if kept:
-            rs = list(kept[1]) + list(rs)
-        f0, _, grads, normal = self._project_many([base], np.stack(rs[:k])[None])[0]
-        diff = np.stack(rs[k:]) - rs[0]                                         # sets × rows
-        n, nt, m = len(many), self.data.n_tests, k - 1
+        if self._profiled is not None and _same_values(self._profiled[0], base):
+            pair = self._profiled[1]          # MINPACK asks for the Jacobian where it has just had the residual
+        else:
+            pair = self._evaluate(self._family_sets(base))
+        f0, star, grads, normal = self._project_many([base], np.stack(pair)[None])[0]
+        rs = self._evaluate([{**base, **star}] + [{**v, **star} for v in many])    # at the families' best values
+        diff = np.stack(rs[1:]) - rs[0]                                         # sets × rows
+        n, nt, m = len(many), self.data.n_tests, len(self.families)
         cell = self._cells.get(n)
         if cell is None:
             cell = self._cells[n] = (np.arange(n)[:, None] * nt + self.rows_test[None, :]).ravel()
@@ -190,6 +186,15 @@ class Problem:
         coef = np.linalg.solve((normal + ridge + 1e-300 * np.eye(m))[None], rhs[..., None])[..., 0]
         proj = diff - sum(g[None, :] * coef[:, self.rows_test, a] for a, g in enumerate(grads))
         return list(f0[None, :] + proj)
+
+    def _evaluate(self, sets: list[dict]) -> list[np.ndarray]:
+        """:meth:`raw` of each value set, in one stacked call where the model allows it."""
+        if self.stacked is not None and all(np.ndim(v[f]) == 1 for v in sets for f in self.families):
+            try:
+                return self.raw_stacked(sets)
+            except UserError:      # a plugin's hook that takes its values as numbers only: one call per set
+                self.stacked = None
+        return [self.raw(v) for v in sets]
 
     def _project(self, vals: dict, rs: list[np.ndarray]):
         """The projected residual of :meth:`profile` from the residuals *rs* of :meth:`_family_sets` (*vals*)."""
