@@ -5,8 +5,9 @@ The objective is the sum of squared *standardised* residuals of both measured ch
 temperature reading included: it measures T_0 like any other reading).  Parameters are of
 two kinds:
 
-* global ones (μ_d, h, effect parameters) — fitted by :func:`scipy.optimize.least_squares`
-  (MINPACK's Levenberg–Marquardt in bounded coordinates: :meth:`Problem.solve`);
+* global ones (μ_d, h, effect parameters) — fitted by MINPACK's Levenberg–Marquardt in bounded
+  coordinates (:meth:`Problem.solve`), with Kaufman's Jacobian of the projected residual
+  (:meth:`Problem.linearised_profiles`);
 * per-test ones (each test's T_0, per-test effect parameters) — they touch only their own
   test's rows, so their Jacobian is block diagonal and one model evaluation per family gives
   all of it (every test perturbed at once).  For given globals they are eliminated by one
@@ -245,6 +246,8 @@ class Problem:
         :func:`scipy.optimize.least_squares` with ``method="lm"`` runs it) in bounded-to-unbounded coordinates x =
         lo + (hi − lo)·(sin z + 1)/2 (the MINUIT transformation, as lmfit uses): the residual has 2·N rows and only
         a few columns, where MINPACK's QR is much cheaper per iteration than the trust-region-reflective solver.
+        Its Jacobian is Kaufman's of the projected residual (:meth:`linearised_profiles`: forward differences, one
+        copy of the data per column).
         The trust region is measured in z itself (``x_scale=1``: a step is a share of each parameter's range) rather
         than by MINPACK's running column norms (``x_scale="jac"``, which only grow: a parameter the residual was
         steep in far from the optimum keeps a tiny trust radius, and a fit along a curved valley, μ_d against the
