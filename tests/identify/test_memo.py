@@ -64,3 +64,22 @@ def test_a_batch_sends_what_is_not_kept_once(data, monkeypatch):
         assert sent == [1]                           # the kept fit is not sent, the twin is sent once
         assert out[0].bic == first.bic and out[1].bic == out[2].bic and out[1] is not out[2]
         assert fit_all(data, [(["cable_relaxation"], None, {})])[0].bic == out[1].bic and sent == [1, 0]
+
+
+def test_the_same_model_fitted_before_is_found_whatever_its_start_and_budget(data):
+    """memo.same_model: the kept fit of those effects under that plan with the lowest BIC — a short fit from a poor
+    start and a full one from another start are the same model; other effects or another plan are not, and outside
+    a diagnosis nothing is kept."""
+    from rollaway.identify.model import DrumPlan
+    plan = DrumPlan(None, ("mu_drum", "heat_transfer_W_m2K"))
+    assert memo.same_model(data, ["lining_creep"], plan) is None
+    with memo.fit_memo():
+        assert memo.same_model(data, ["lining_creep"], plan) is None
+        short = calibrate(data, ["lining_creep"], plan, start={"lining_creep.relaxed_fraction": 0.5},
+                          max_iterations=1)
+        full = calibrate(data, ["lining_creep"], plan)
+        assert full.bic < short.bic
+        found = memo.same_model(data, ["lining_creep"], plan)
+        assert found is not None and found.bic == full.bic and found.values == full.values
+        assert memo.same_model(data, ["cable_relaxation"], plan) is None
+        assert memo.same_model(data, ["lining_creep"], DrumPlan(None, ("mu_drum",))) is None

@@ -88,6 +88,19 @@ def key(data, effects, params, kwargs: dict):
             start, opts), keep
 
 
+def same_model(data, effects, params):
+    """The kept fit of *effects* under *params* on *data* (every brake parameter the plan frees free) with the lowest
+    BIC, whatever its start and budget, or None."""
+    k = key(data, effects, params, {})
+    if k is None:
+        return None
+    best = None
+    for kk, (fit, _) in _MEMO.items():
+        if kk[:8] == k[0][:8] and fit.jacobian is not None and (best is None or fit.bic < best.bic):
+            best = fit
+    return None if best is None else _copy(best)
+
+
 def lookup(k):
     """A copy of the fit kept under *k* (from :func:`key`), or None."""
     if k is None or _MEMO is None:

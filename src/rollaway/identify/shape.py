@@ -102,11 +102,19 @@ def candidate_shapes(data, candidates, params, nq, nt, top: int = SHAPE_TOP) -> 
     (:func:`rollaway.identify.selection.structure` with the channel noises *nq*, *nt*).  Where no catalogue form
     clears the structure, the catalogue's ranking by BIC measures how well each *form* bends to the data, not
     which quantity changes: a friction that fades above a temperature, written linear, can lose to a three-parameter
-    stiffness law that fits neither; its shape-free form clears the structure and says which quantity it is."""
+    stiffness law that fits neither; its shape-free form clears the structure and says which quantity it is.
+    A form this diagnosis has fitted before under the same plan (the first effect re-formed, to weigh a second
+    effect) starts from where that fit ended (:func:`rollaway.identify.memo.same_model`): the same model and
+    optimum, a quarter of the evaluations."""
     from rollaway.identify.selection import structure
     pool = [c for c in sorted(candidates, key=lambda c: c.delta_bic)
             if c.delta_bic < 0 and c.fit.jacobian is not None][:top]
     jobs = [(c.effect, job) for c in pool for job in _form_jobs(c.fit, params)]
+    from rollaway.identify import memo
+    for _, job in jobs:           # a form fitted before (the re-formed first effect) starts from where it ended
+        kept = memo.same_model(data, job[0], job[1])
+        if kept is not None:
+            job[2]["start"] = kept.values
     from rollaway.identify.workers import fit_all
     done = fit_all(data, [j for _, j in jobs]) if jobs else []
     return {e: (f, not structure(f, nq, nt)["structured"]) for (e, _), f in zip(jobs, done) if f.jacobian is not None}
