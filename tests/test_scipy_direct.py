@@ -1,4 +1,5 @@
-"""SciPy's compiled routines loaded without scipy.optimize's package: the same numbers, and the package not imported."""
+"""SciPy's compiled routines loaded without scipy.optimize's and scipy.special's packages: the same numbers, and the
+packages not imported."""
 import os
 import subprocess
 import sys
@@ -44,8 +45,41 @@ def test_diagnosing_a_log_does_not_import_scipy_optimize(tmp_path):
     synth(["lining_creep"], seed=3, hand_forces_N=(200.0, 300.0), dt_s=300.0).to_csv(path)
     code = ("import sys; from rollaway.api import load_measurements, diagnose; "
             f"d = diagnose(load_measurements({str(path)!r})); "
-            "print(sorted(m for m in sys.modules if m.startswith('scipy.optimize')))")
+            "print(sorted(m for m in sys.modules if m.startswith('scipy.optimize'))); "
+            "print(sorted(m for m in ('scipy.special', 'scipy.stats', 'numpy.f2py') if m in sys.modules))")
     out = subprocess.run([sys.executable, "-c", code], capture_output=True, text=True,
                          env={**os.environ, "ROLLAWAY_WORKERS": "1"})
     assert out.returncode == 0, out.stderr[-2000:]
-    assert out.stdout.strip() == "['scipy.optimize._minpack', 'scipy.optimize._slsqplib']", out.stdout
+    optimize, packages = out.stdout.strip().splitlines()
+    assert optimize == "['scipy.optimize._minpack', 'scipy.optimize._slsqplib']", out.stdout
+    assert packages == "[]", out.stdout          # scipy.special's ufuncs came without its package (0.3 s)
+
+
+def _fresh(code: str) -> str:
+    out = subprocess.run([sys.executable, "-c", code], capture_output=True, text=True)
+    assert out.returncode == 0, out.stderr[-2000:]
+    return out.stdout.strip()
+
+
+def test_special_functions_are_scipys_objects_and_scipy_special_still_imports():
+    """Loaded first without the package, then the package imported: the same ufunc objects, scipy.stats working,
+    and scipy.special's own attributes (not only the ufuncs) there."""
+    code = ("import sys; from rollaway.scipy_direct import special_functions; sf = special_functions(); "
+            "bare = 'scipy.special' in sys.modules; "
+            "import scipy.special, scipy.stats; "
+            "same = all(getattr(sf, n) is getattr(scipy.special, n) for n in ('ndtr', 'stdtrit', 'fdtri', 'fdtrc', 'chdtri')); "
+            "print(bare, same, special_functions() is scipy.special, callable(scipy.special.logsumexp), "
+            "repr(float(scipy.stats.t.ppf(0.975, 5))), repr(float(sf.stdtrit(5, 0.975))))")
+    bare, same, package, logsumexp, public, direct = _fresh(code).split()
+    assert (bare, same, package, logsumexp) == ("False", "True", "True", "True")
+    assert public == direct
+
+
+@settings(max_examples=50, deadline=None)
+@given(st.floats(0.5, 200.0), st.floats(0.5, 200.0), st.floats(1e-6, 1 - 1e-6))
+def test_special_functions_give_scipy_specials_numbers(d1, d2, p):
+    import scipy.special as public
+    sf = scipy_direct.special_functions()
+    for name, args in (("ndtr", (d1 - 100.0,)), ("stdtrit", (d1, p)), ("fdtri", (d1, d2, p)), ("fdtrc", (d1, d2, p * 10)),
+                       ("chdtri", (d1, p))):
+        assert np.array_equal(getattr(sf, name)(*args), getattr(public, name)(*args), equal_nan=True)

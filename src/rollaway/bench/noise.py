@@ -24,10 +24,11 @@ import math
 from dataclasses import dataclass
 
 import numpy as np
-from scipy import special
 
 from rollaway.errors import UserError
-from rollaway.scipy_direct import nnls
+from rollaway.scipy_direct import nnls, special_functions
+
+special = special_functions()      # scipy.special's ufuncs without its package start (rollaway.scipy_direct)
 
 CLIP = 3.5                 # values beyond ±3.5 σ are outliers (a spike, the samples around a step)
 # E[Z²·1(|Z| < c)] for standard normal Z: keeps the trimmed mean square Gaussian-consistent

@@ -18,10 +18,11 @@ import math
 from dataclasses import replace
 
 import numpy as np
-from scipy import special
 
 from rollaway.bench.noise import Noise, sample_sigma
-from rollaway.scipy_direct import nnls
+from rollaway.scipy_direct import nnls, special_functions
+
+special = special_functions()      # scipy.special's ufuncs without its package start (rollaway.scipy_direct)
 
 # per-window sums, as in rollaway.bench.reduction: n, Σt, ΣT, ΣM, Σambient, n_e, Σe_T², Σe_M²
 N, ST, STEMP, SQ, SAMB, NE, E2T, E2Q = range(8)

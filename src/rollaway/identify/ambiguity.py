@@ -59,9 +59,10 @@ def preference_margin(fit, se: float) -> float:
     tail it stands for taken from Student's t with tests − 1 dof: a standard error from n paired per-test
     differences is itself uncertain — with 2 tests the 2σ bar is 13.9σ, with 4 it is 3.9σ, with 8 2.5σ), and at
     least :data:`SMALL_ELPD`."""
-    from scipy.special import ndtr, stdtrit      # norm.cdf and t.ppf without importing scipy.stats (0.4 s)
+    from rollaway.scipy_direct import special_functions    # norm.cdf and t.ppf without scipy.stats's start
+    sf = special_functions()
     n = int(getattr(fit.data, "n_tests", 0))
-    k = max(HELDOUT_SE, float(stdtrit(n - 1, ndtr(HELDOUT_SE)))) if n > 1 else math.inf
+    k = max(HELDOUT_SE, float(sf.stdtrit(n - 1, sf.ndtr(HELDOUT_SE)))) if n > 1 else math.inf
     return max(k * se, SMALL_ELPD)
 
 

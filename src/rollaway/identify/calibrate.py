@@ -20,11 +20,13 @@ import math
 from dataclasses import dataclass, field
 
 import numpy as np
-from scipy import special
 
-from rollaway.identify.fitting import Problem, single_blas_thread
 from rollaway.bench.measurements import Measurements
+from rollaway.identify.fitting import Problem, single_blas_thread
 from rollaway.identify.model import INITIAL_TEMP, BenchModel, Prediction
+from rollaway.scipy_direct import special_functions
+
+special = special_functions()      # scipy.special's ufuncs without its package start (rollaway.scipy_direct)
 
 
 @dataclass

@@ -30,7 +30,10 @@ from __future__ import annotations
 import math
 
 import numpy as np
-from scipy import special
+
+from rollaway.scipy_direct import special_functions
+
+special = special_functions()      # scipy.special's ufuncs without its package start (rollaway.scipy_direct)
 
 MAX_RHO = 0.95               # (1 + ρ)/(1 − ρ) ≤ 39: a residual that is one smooth curve is a misfit, not noise
 

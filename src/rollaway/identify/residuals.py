@@ -10,10 +10,12 @@ from __future__ import annotations
 import math
 
 import numpy as np
-from scipy import special
 
 from rollaway.bench.measurements import Measurements
 from rollaway.bench.noise import CLIP, Noise, clip_square, noise_estimate  # noqa: F401  (re-exported)
+from rollaway.scipy_direct import special_functions
+
+special = special_functions()      # scipy.special's ufuncs without its package start (rollaway.scipy_direct)
 
 STRUCTURE_P = 1e-3      # significance of each structure test
 CHANNELS = {"torque": ("torque_Nm", "N·m"), "temperature": ("drum_temp_C", "°C")}
