@@ -42,6 +42,8 @@ SMALL_ELPD = 4.0              # ... and beyond 4 in log score: below it the diff
 MAX_RIVALS = 2                # at most this many alternatives are named beside the verdict
 WEAK_BIC = -6.0               # "strong" evidence (Kass & Raftery 1995: 2·Δln L of 6–10) but short of the selection's
                               # −10: named beside a "none" verdict as a weak alternative, never as the verdict [assumed]
+WEAK_BIC_HELD = -2.0          # ... or "positive" evidence (2·Δln L of 2–6) where the effect's fit holds brake parameters
+                              # the bare drum freed to imitate it (it explains the data with fewer of them) [assumed]
 WEAK_TOP = 3                  # step-1 candidates examined for a weak alternative
 
 
@@ -214,34 +216,36 @@ def weak_alternatives(plan, base, candidates: list, validity: dict, noise_torque
     the calibrated drum *base*), each compared fairly with the drum — refitted with the brake parameters of *plan*
     that it makes unnecessary held (backward elimination by BIC, μ_d always fitted; the bare drum freed them to
     imitate it: a loss with time at constant temperature takes the eq. (24) slope and offset) — and kept when that
-    fit lowers BIC by more than −:data:`WEAK_BIC` and predicts held-out tests better (:func:`heldout_difference`
-    above :data:`SMALL_ELPD`) — or, where it lowers BIC beyond the verdict's own bar
-    (:data:`~rollaway.identify.selection.BIC_THRESHOLD`), when the held-out prediction does not prefer the drum
+    fit lowers BIC by more than −:data:`WEAK_BIC` (−:data:`WEAK_BIC_HELD` where it holds some of them: the effect
+    then explains the data with fewer of the drum's parameters, which the BIC of the free drum does not see) and
+    predicts held-out tests better (:func:`heldout_difference` above :data:`SMALL_ELPD`) — or, where it lowers BIC
+    beyond the verdict's own bar (:data:`~rollaway.identify.selection.BIC_THRESHOLD`), when the held-out prediction does not prefer the drum
     (beyond :func:`preference_margin`): the drum imitated it, and two tests cannot say which — with the test that
     would settle it (:func:`tell_apart`).  At most
     :data:`MAX_RIVALS`, best first: ``{"effects", "delta_bic", "heldout_elpd", "heldout_se", "why", "fit",
-    "tell_apart", "weak": True}``."""
+    "tell_apart", "weak": True, "held"}`` (*held*: the brake parameters its fit held)."""
     out = []
     if base.jacobian is None:
         return out
     for c in [c for c in candidates if c.delta_bic < 0.0][:WEAK_TOP]:
         fit = _held_where_unneeded(plan, c.effect, c.fit)
-        if fit is None or fit.bic - base.bic >= WEAK_BIC:
+        held = [] if fit is None else [n for n in plan.free if n not in fit.model.free]
+        if fit is None or fit.bic - base.bic >= (WEAK_BIC_HELD if held else WEAK_BIC):
             continue
         elpd, se = heldout_difference(base, fit)
         strong = fit.bic - base.bic < BIC_THRESHOLD      # the verdict's bar, met only with drum parameters held
         if elpd <= (-preference_margin(base, se) if strong else SMALL_ELPD):
             continue
-        held = [n for n in plan.free if n not in fit.model.free]
         why = (f"with {c.effect} in the model{' ' + ', '.join(held) + ' need not be fitted and' if held else ''} BIC "
-               f"drops by {base.bic - fit.bic:.1f} (selection needs {-WEAK_BIC:g} to name it as an alternative, 10 "
-               f"as the verdict) and held-out tests are predicted "
+               f"drops by {base.bic - fit.bic:.1f} (selection needs {-(WEAK_BIC_HELD if held else WEAK_BIC):g} to "
+               f"name it as an alternative{' with drum parameters held' if held else ''}, 10 as the verdict) and "
+               f"held-out tests are predicted "
                + ("better" if elpd > SMALL_ELPD else "as well") + f" (Δ log score {elpd:+.1f} ± {se:.1f}): "
                f"suggested, not established" + ("" if not strong or elpd > SMALL_ELPD else
                                                  f" — the drum with {', '.join(held) or 'its parameters'} free "
                                                  f"imitates it, and the held-out tests cannot tell which"))
         out.append({"kind": "weak", "effects": [c.effect], "delta_bic": float(fit.bic - base.bic), "heldout_elpd": elpd,
-                    "heldout_se": se, "why": why, "fit": fit, "weak": True,
+                    "heldout_se": se, "why": why, "fit": fit, "weak": True, "held": held,
                     "tell_apart": tell_apart(base, fit, validity, noise_torque_Nm)})
     out.sort(key=lambda r: r["delta_bic"])
     return out[:MAX_RIVALS]
@@ -341,6 +345,6 @@ def verdict_line(verdict: str, alternatives: list[dict], detection=(), structure
     return f"{names}: these data cannot tell them apart; {alternatives[0]['tell_apart']['words']}"
 
 
-__all__ = ["HELDOUT_SE", "INDISTINGUISHABLE_BIC", "SMALL_ELPD", "MAX_RIVALS", "WEAK_BIC", "alternative_words",
-           "closest", "heldout_difference", "not_ruled_out", "preference_margin", "rivals", "set_rivals",
+__all__ = ["HELDOUT_SE", "INDISTINGUISHABLE_BIC", "SMALL_ELPD", "MAX_RIVALS", "WEAK_BIC", "WEAK_BIC_HELD",
+           "alternative_words", "closest", "heldout_difference", "not_ruled_out", "preference_margin", "rivals", "set_rivals",
            "verdict_line", "weak_alternatives"]
