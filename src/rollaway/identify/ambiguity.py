@@ -219,9 +219,9 @@ def weak_alternatives(plan, base, candidates: list, validity: dict, noise_torque
     fit lowers BIC by more than −:data:`WEAK_BIC` (−:data:`WEAK_BIC_HELD` where it holds some of them: the effect
     then explains the data with fewer of the drum's parameters, which the BIC of the free drum does not see) and
     predicts held-out tests better (:func:`heldout_difference` above :data:`SMALL_ELPD`) — or, where it lowers BIC
-    beyond the verdict's own bar (:data:`~rollaway.identify.selection.BIC_THRESHOLD`), when the held-out prediction does not prefer the drum
-    (beyond :func:`preference_margin`): the drum imitated it, and two tests cannot say which — with the test that
-    would settle it (:func:`tell_apart`).  At most
+    beyond the verdict's own bar (:data:`~rollaway.identify.selection.BIC_THRESHOLD`), when the held-out prediction
+    does not prefer the drum (beyond :func:`preference_margin`): the drum imitated it, and two tests cannot say
+    which — with the test that would settle it (:func:`tell_apart`).  At most
     :data:`MAX_RIVALS`, best first: ``{"effects", "delta_bic", "heldout_elpd", "heldout_se", "why", "fit",
     "tell_apart", "weak": True, "held"}`` (*held*: the brake parameters its fit held)."""
     out = []
@@ -346,5 +346,5 @@ def verdict_line(verdict: str, alternatives: list[dict], detection=(), structure
 
 
 __all__ = ["HELDOUT_SE", "INDISTINGUISHABLE_BIC", "SMALL_ELPD", "MAX_RIVALS", "WEAK_BIC", "WEAK_BIC_HELD",
-           "alternative_words", "closest", "heldout_difference", "not_ruled_out", "preference_margin", "rivals", "set_rivals",
-           "verdict_line", "weak_alternatives"]
+           "alternative_words", "closest", "heldout_difference", "not_ruled_out", "preference_margin", "rivals",
+           "set_rivals", "verdict_line", "weak_alternatives"]
