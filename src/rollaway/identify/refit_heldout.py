@@ -73,14 +73,24 @@ def linear_holds(fit, held) -> bool:
     return abs(float(actual @ actual) - linear) <= HELD_TOLERANCE * max(linear, float(g.sum()))
 
 
+def _checked_fold(data, fit, held):
+    """:func:`_fold` of the tests *held* where their linear step fails :func:`linear_holds`; else no residual (the
+    linear step stands).  One job of :func:`refit_loto_residuals`'s batch: the check and, where needed, the
+    refit run on the same core."""
+    if linear_holds(fit, held):
+        return SimpleNamespace(data=None, rows=None, residual=None)
+    return _fold(data, held, fit.model, tuple(fit.names), _globals(fit.values), FOLD_ITERATIONS)
+
+
 def refit_loto_residuals(fits: list, also=()) -> tuple[list[np.ndarray], list[int]]:
     """For each fit of *fits* (all on the same data): its leave-one-test-out standardised residuals
     [temperature | torque] (:func:`rollaway.uncertainty.heldout.loto_residuals`) with every fold whose linear step
-    fails :func:`linear_holds` refitted — all those refits side by side on the machine's cores — and how many folds
-    were refitted (kept on the fit: a fit compared twice is refitted once).  A fold that leaves fewer residuals than
-    free globals, or that the solver cannot refit, keeps its linear step; a fit without free globals or Jacobian keeps
-    its own residuals.  *also*: more calibrations ``(effects, params, kwargs)`` the caller will ask for next, run in
-    the same batch where there are folds to refit (kept for that call by :mod:`rollaway.identify.memo`)."""
+    fails :func:`linear_holds` refitted — each fold's check and refit one job, all side by side on the machine's
+    cores — and how many folds were refitted (kept on the fit: a fit compared twice is refitted once).  A fold that
+    leaves fewer residuals than free globals, or that the solver cannot refit, keeps its linear step; a fit without
+    free globals or Jacobian keeps its own residuals.  *also*: more calibrations ``(effects, params, kwargs)`` the
+    caller will ask for next, run first in the same batch where there are folds to check (kept for that call by
+    :mod:`rollaway.identify.memo`)."""
     from rollaway.identify.workers import run_fits
     data = fits[0].data
     known = [getattr(f, "_refit_heldout", None) for f in fits]     # a fit compared twice is refitted once
@@ -91,8 +101,8 @@ def refit_loto_residuals(fits: list, also=()) -> tuple[list[np.ndarray], list[in
             continue
         for held in folds(data.n_tests):
             left = int(np.count_nonzero(~np.isin(data.test_index, held)))
-            if 2 * left > len(fit.names) and not linear_holds(fit, held):   # nothing to refit on: the linear step
-                calls.append((_fold, (held, fit.model, tuple(fit.names), _globals(fit.values), FOLD_ITERATIONS), {}))
+            if 2 * left > len(fit.names):          # else nothing to refit on: the linear step stands
+                calls.append((_checked_fold, (fit, held), {}))
                 owner.append(k)
     if calls and also:
         from rollaway.identify.calibrate import calibrate
