@@ -79,7 +79,7 @@ def beyond_reform(data, params, chosen: list[str], current: FitResult, two: FitR
     return out
 
 
-def beyond_second_term(data, params, first: str, second: str, pair: FitResult) -> dict | None:
+def beyond_second_term(data, params, first: str, second: str, pair: FitResult, also=()) -> dict | None:
     """Does *second* still add beside *first* written with a second term of its own law
     (:func:`rollaway.effects.second_term.second_term`: one more amplitude and time constant)?  A cable relaxation
     beside a lining creep can write a creep that follows a power law of time: two exponentials of any kind
@@ -88,7 +88,9 @@ def beyond_second_term(data, params, first: str, second: str, pair: FitResult) -
     time constants at :data:`SECOND_TERM_STARTS` times the first's in *pair*, the better fit by BIC kept) is fitted
     alone and beside *second*; the three must lower BIC below :data:`BIC_THRESHOLD` against the two and predict
     held-out tests better (:func:`heldout_preference`, ``"passes"``; ``"delta_bic"``; ``"term"``: its name).  None
-    where *first* has no second term or a fit fails."""
+    where *first* has no second term or a fit fails.  *also*: more fit jobs ``(effects, params, kwargs)`` the caller
+    asks for next, run in the batch of the second term's starts (kept for that call by
+    :mod:`rollaway.identify.memo`)."""
     from rollaway.effects import get_effect
     from rollaway.effects.second_term import has_second_term, second_term
     eff = get_effect(first)
@@ -102,7 +104,7 @@ def beyond_second_term(data, params, first: str, second: str, pair: FitResult) -
             v = float(pair.values.get(f"{first}.{p.name}", p.initial))
             start[f"{two.name}.{p.name}"] = min(max(v * m, p.lower), p.upper) if p.unit == "s" else p.initial
         jobs.append(([first, two], params, dict(start=start)))
-    fits = [f for f in fit_all(data, jobs) if f.jacobian is not None]
+    fits = [f for f in fit_all(data, jobs + list(also))[:len(jobs)] if f.jacobian is not None]
     if not fits:
         return None
     term = min(fits, key=lambda f: f.bic)

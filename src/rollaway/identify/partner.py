@@ -73,8 +73,8 @@ def own_evidence(data, params, chosen, current, struct, fits, nq, nt, steps, ev,
             return chosen, current, struct, fits
         own = dict(own, passes=False, second_term=term)     # a second term of the first's own law says as much
         steps[-1].update(kept=False, beyond_reform=own)
-    other = beside_reformed(data, params, chosen[0], first, names,
-                            reform=reform[0] if reform else None) if names else None
+    other = beside_reformed(data, params, chosen[0], first, names, reform=reform[0] if reform else None,
+                            departures=refree + departures) if names else None
     if other is not None and not _beside_departures(data, params, chosen[0], first, other[0], other[1],
                                                     refree + departures):
         other = None
@@ -129,7 +129,7 @@ def beside_partial(data, params, first: str, first_fit: FitResult, names, depart
     radiating drum's temperature law beside a creep the catalogue writes wrongly) — and, where it finds one, asked again with the drum's *departures* freed in both fits it compares
     (:meth:`rollaway.identify.drum.DrumCalibration.departures`: a radial contraction can stand in for a thicker
     lining beside a spline).  Returns :func:`beside_reformed`'s answer or None."""
-    found = beside_reformed(data, params, first, first_fit, names)
+    found = beside_reformed(data, params, first, first_fit, names, departures=departures)
     if found is None or not _beside_departures(data, params, first, first_fit, found[0], found[1], departures):
         return None
     return found
@@ -142,21 +142,31 @@ def _beside_departures(data, params, first: str, first_fit: FitResult, name: str
     (those *params* holds, but not a parameter of *name* itself: the gap beside an installation gap)?  A gap or a
     radial contraction can stand in for a lining of another thickness, a friction change beside a spline for the
     arm ratio the bare drum could not identify.  True where nothing is left to free or a fit fails."""
-    from rollaway.identify.model import DrumPlan
-    from rollaway.model.drum_parameters import FREE_PARAMETERS
-    wider = tuple(n for n in departures if n not in getattr(params, "free", ()) and FREE_PARAMETERS[n].effect != name)
-    job = _reform_job(params, first, first_fit) if wider else None
-    if job is None:
+    jobs = _departure_jobs(params, first, first_fit, name, pair, departures)
+    if not jobs:
         return True
-    plan = DrumPlan(params.params, tuple(params.free) + tuple(dict.fromkeys(wider)))
-    reform, both = fit_all(data, [([job[0][0]], plan, dict(start=first_fit.values, max_iterations=REFORM_ITERATIONS)),
-                                  ([job[0][0], name], plan, dict(start=pair.values, max_iterations=REFORM_ITERATIONS))])
+    reform, both = fit_all(data, jobs)
     if reform.jacobian is None or both.jacobian is None:
         return True
     return both.bic - reform.bic < BIC_THRESHOLD and heldout_preference(data, both, reform)["passes"]
 
 
-def beside_reformed(data, params, first: str, first_fit: FitResult, names, reform=None):
+def _departure_jobs(params, first: str, first_fit: FitResult, name: str, pair: FitResult, departures=()) -> list:
+    """:func:`_beside_departures`'s two fit jobs ``(effects, params, kwargs)`` — *first* re-formed alone and beside
+    *name*, with the drum's *departures* freed — or ``[]`` where nothing is left to free or *first* has no
+    flexible form."""
+    from rollaway.identify.model import DrumPlan
+    from rollaway.model.drum_parameters import FREE_PARAMETERS
+    wider = tuple(n for n in departures if n not in getattr(params, "free", ()) and FREE_PARAMETERS[n].effect != name)
+    job = _reform_job(params, first, first_fit) if wider else None
+    if job is None:
+        return []
+    plan = DrumPlan(params.params, tuple(params.free) + tuple(dict.fromkeys(wider)))
+    return [([job[0][0]], plan, dict(start=first_fit.values, max_iterations=REFORM_ITERATIONS)),
+            ([job[0][0], name], plan, dict(start=pair.values, max_iterations=REFORM_ITERATIONS))]
+
+
+def beside_reformed(data, params, first: str, first_fit: FitResult, names, reform=None, departures=()):
     """A second effect on the evidence it has beside the first effect *first* re-formed (its hook as a linear
     spline, :func:`rollaway.identify.shape.flexible_effect`), for when the first's catalogue form is wrong: then
     the pair keeps the first's misfit and the first re-formed absorbs part of the second, and a forward step on
@@ -165,7 +175,9 @@ def beside_reformed(data, params, first: str, first_fit: FitResult, names, refor
     the re-formed first put it: its effect parameters and the brake parameters fitted); the best by BIC
     is refitted with everything free and must lower BIC below :data:`BIC_THRESHOLD` and predict held-out tests better by
     :func:`~rollaway.identify.beyond.beyond_reform`'s rule.  *reform*: that re-formed first, when already fitted (:func:`_reform_job`).
-    Sought whether or not the re-formed first leaves structure.
+    Sought whether or not the re-formed first leaves structure.  *departures*: the brake parameters the caller
+    frees next in :func:`_beside_departures`; its fits run beside the second term's (kept by
+    :mod:`rollaway.identify.memo`).
     Returns (name, the catalogue pair's fit, ΔBIC, held-out comparison) or None."""
     from rollaway.effects import get_effect
     job = _reform_job(params, first, first_fit)
@@ -188,11 +200,13 @@ def beside_reformed(data, params, first: str, first_fit: FitResult, names, refor
     if both.jacobian is None or both.bic - reform.bic >= BIC_THRESHOLD:
         return None
     alone = _own_reform_job(params, name, both)         # asked next where the comparison passes: fitted beside it
-    pref = heldout_preference(data, both, reform, also=[alone] if alone else ())
+    pair_job = ([first, name], params, dict(start=both.values))     # ... and the catalogue pair after it
+    pref = heldout_preference(data, both, reform, also=[j for j in (alone, pair_job) if j])
     if not pref["passes"] or not _beyond_own_reform(data, params, name, both):
         return None
-    pair = calibrate(data, [first, name], params, start=both.values)
-    term = beyond_second_term(data, params, first, name, pair)
+    pair = calibrate(data, *pair_job[:2], **pair_job[2])
+    term = beyond_second_term(data, params, first, name, pair,
+                              also=_departure_jobs(params, first, first_fit, name, pair, departures))
     if term is not None and not term["passes"]:
         return None
     return name, pair, float(both.bic - reform.bic), pref
