@@ -6,6 +6,7 @@
     PYTHONPATH=src python benchmarks/bench_diagnose.py --held-out         # the slow kinds of set, goal ≤ 5 s
     PYTHONPATH=src python benchmarks/bench_diagnose.py --stress           # 40 stress sets, goal ≤ 5 s each
     PYTHONPATH=src python benchmarks/bench_diagnose.py --two-effect 0:216 # the two-effect held-out campaigns
+    PYTHONPATH=src python benchmarks/bench_diagnose.py --short-high-rate  # 44 logs at 1–100 Hz, ≤ 10 000 rows
 
 Each log is 8 tests of an hour (``rollaway synth``, hidden lining_creep unless ``--effect``) written as a CSV
 under a temporary folder; the CLI runs in a fresh interpreter and its peak resident memory is that process's
@@ -175,6 +176,32 @@ def stress_sets():
     return out
 
 
+def short_high_rate_sets():
+    """(name, kwargs of ``generate``) of 44 logs at 1, 10 and 100 Hz of at most 10 000 rows, so of short tests
+    (12–1200 s): 24 with none, a linear friction law, a power-law creep or a cable relaxation with radiation, then 20
+    with one or two random hidden effects, on the paper's drum and others, random μ_d and h."""
+    from tests.identify.bench_generator import EFFECTS, OTHER_DRUMS
+    hidden = [k for k, v in EFFECTS.items() if v[0] in ("exact", "other") and k != "zero_offset"]
+    drums = [{}] + list(OTHER_DRUMS.values())
+    out = []
+    for k, (sampling, duration_s, n_forces, effects) in enumerate(
+            (s, d, n, e) for s, d, n in (("10Hz", 240.0, 2), ("10Hz", 120.0, 4), ("100Hz", 24.0, 2),
+                                         ("100Hz", 12.0, 4), ("1Hz", 1200.0, 4), ("1Hz", 600.0, 4))
+            for e in ([], ["friction_linear"], ["creep_power_law"], ["cable_exponential", "radiation"])):
+        out.append((f"h{k:02d} {sampling} {'+'.join(effects) or 'none'}",
+                    dict(effects=effects, sampling=sampling, seed=900 + k, duration_s=duration_s, n_forces=n_forces,
+                         drum=drums[k % len(drums)], mu=0.3 + 0.01 * (k % 15), h=30.0 + k % 10)))
+    rng = np.random.default_rng(55)
+    for k in range(20):
+        sampling, duration_s, n_forces = [("10Hz", 120.0, 4), ("100Hz", 12.0, 4), ("10Hz", 240.0, 2),
+                                          ("100Hz", 24.0, 2)][k % 4]
+        effects = [str(e) for e in rng.choice(hidden, 1 + (k % 3 == 0), replace=False)]
+        out.append((f"g{k:02d} {sampling} {'+'.join(effects)}",
+                    dict(effects=effects, sampling=sampling, seed=5500 + k, duration_s=duration_s, n_forces=n_forces,
+                         drum=drums[rng.integers(len(drums))], mu=rng.uniform(0.3, 0.45), h=rng.uniform(25, 45))))
+    return out
+
+
 def two_effect_sets(first: int, stop: int):
     """(name, data maker) of the two-effect held-out campaigns *first* … *stop* − 1 of
     ``tests/uncertainty/band_questions.py`` (a random pair of catalogue and other forms, 5- and 1-min sampling,
@@ -218,9 +245,14 @@ def main(argv=None):
     ap.add_argument("--held-out", action="store_true", help="the slow kinds of set from the independent generator")
     ap.add_argument("--stress", action="store_true", help="40 stress sets from the independent generator")
     ap.add_argument("--two-effect", metavar="FIRST:STOP", help="the two-effect held-out campaigns FIRST … STOP − 1")
+    ap.add_argument("--short-high-rate", action="store_true", help="44 logs at 1–100 Hz of ≤ 10 000 rows")
     a = ap.parse_args(argv)
     if a.stress:
         stress()
+        return
+    if a.short_high_rate:
+        from tests.identify.bench_generator import generate
+        stress([(name, lambda kw=kw: generate(**kw)) for name, kw in short_high_rate_sets()])
         return
     if a.two_effect:
         first, _, stop = a.two_effect.partition(":")
