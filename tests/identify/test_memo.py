@@ -83,3 +83,36 @@ def test_the_same_model_fitted_before_is_found_whatever_its_start_and_budget(dat
         assert found is not None and found.bic == full.bic and found.values == full.values
         assert memo.same_model(data, ["cable_relaxation"], plan) is None
         assert memo.same_model(data, ["lining_creep"], DrumPlan(None, ("mu_drum",))) is None
+
+
+def test_an_answer_kept_by_tag_is_recalled_for_the_same_inputs_only(data):
+    k = memo.key(data, ["lining_creep", "friction_temperature"], None, {"start": {"mu_drum": 0.3}})
+    assert k is None and memo.recall("search", k) is memo.ABSENT          # nothing is kept outside a diagnosis
+    with memo.fit_memo():
+        k = memo.key(data, ["lining_creep", "friction_temperature"], None, {"start": {"mu_drum": 0.3}})
+        other = memo.key(data, ["lining_creep", "friction_temperature"], None, {"start": {"mu_drum": 0.31}})
+        assert memo.recall("search", k) is memo.ABSENT
+        memo.remember("search", k, None)                  # None is an answer too
+        assert memo.recall("search", k) is None
+        assert memo.recall("another search", k) is memo.ABSENT and memo.recall("search", other) is memo.ABSENT
+    assert memo.recall("search", k) is memo.ABSENT
+
+
+def test_a_second_effect_sought_twice_beside_the_same_first_is_sought_once(data, solves, monkeypatch):
+    from rollaway.identify import partner
+    searches = []
+    real = partner._beside_reformed
+    monkeypatch.setattr(partner, "_beside_reformed", lambda *a: searches.append(a[4]) or real(*a))
+    with memo.fit_memo():
+        first = calibrate(data, ["lining_creep"])
+        names = ["friction_temperature", "cable_relaxation"]
+        once = partner.beside_reformed(data, None, "lining_creep", first, names)
+        n = solves["n"]
+        again = partner.beside_reformed(data, None, "lining_creep", calibrate(data, ["lining_creep"]), names)
+        assert solves["n"] == n and len(searches) == 1    # the same first at the same values: no search, no fit
+        assert (once is None) == (again is None) and (once is None or once[:1] == again[:1])
+        partner.beside_reformed(data, None, "lining_creep", first, names[:1])    # other candidates: sought again
+        partner.beside_reformed(data, None, "lining_creep", first, names, departures=("gap_m",))
+        assert len(searches) == 3
+    partner.beside_reformed(data, None, "lining_creep", first, names)            # outside a diagnosis: no memo
+    assert len(searches) == 4

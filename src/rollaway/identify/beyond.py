@@ -79,7 +79,8 @@ def beyond_reform(data, params, chosen: list[str], current: FitResult, two: FitR
     return out
 
 
-def beyond_second_term(data, params, first: str, second: str, pair: FitResult, also=()) -> dict | None:
+def beyond_second_term(data, params, first: str, second: str, pair: FitResult, also=(), give_up: bool = False
+                       ) -> dict | None:
     """Does *second* still add beside *first* written with a second term of its own law
     (:func:`rollaway.effects.second_term.second_term`: one more amplitude and time constant)?  A cable relaxation
     beside a lining creep can write a creep that follows a power law of time: two exponentials of any kind
@@ -90,7 +91,8 @@ def beyond_second_term(data, params, first: str, second: str, pair: FitResult, a
     held-out tests better (:func:`heldout_preference`, ``"passes"``; ``"delta_bic"``; ``"term"``: its name).  None
     where *first* has no second term or a fit fails.  *also*: more fit jobs ``(effects, params, kwargs)`` the caller
     asks for next, run in the batch of the second term's starts (kept for that call by
-    :mod:`rollaway.identify.memo`)."""
+    :mod:`rollaway.identify.memo`).  *give_up*: the three are fitted only as far as they can still come below the
+    BIC bar (:func:`rollaway.identify.solver.futile`; the answer, not its numbers, is what the caller reads)."""
     from rollaway.effects import get_effect
     from rollaway.effects.second_term import has_second_term, second_term
     eff = get_effect(first)
@@ -108,7 +110,8 @@ def beyond_second_term(data, params, first: str, second: str, pair: FitResult, a
     if not fits:
         return None
     term = min(fits, key=lambda f: f.bic)
-    three = calibrate(data, [first, two, second], params, start={**pair.values, **term.values})
+    three = calibrate(data, [first, two, second], params, start={**pair.values, **term.values},
+                      give_up_bic=term.bic + BIC_THRESHOLD if give_up else None)
     if three.jacobian is None:
         return None
     out = heldout_preference(data, three, term)

@@ -98,7 +98,7 @@ def same_model(data, effects, params):
     for kk, (fit, _) in _MEMO.items():
         if kk[:8] == k[0][:8] and fit.jacobian is not None and (best is None or fit.bic < best.bic):
             best = fit
-    return None if best is None else _copy(best)
+    return None if best is None else copy_fit(best)
 
 
 def lookup(k):
@@ -106,16 +106,34 @@ def lookup(k):
     if k is None or _MEMO is None:
         return None
     hit = _MEMO.get(k[0])
-    return None if hit is None else _copy(hit[0])
+    return None if hit is None else copy_fit(hit[0])
 
 
 def store(k, fit) -> None:
     """Keep a copy of *fit* under *k* (from :func:`key`; nothing when *k* is None)."""
     if k is not None and _MEMO is not None:
-        _MEMO[k[0]] = (_copy(fit), k[1])
+        _MEMO[k[0]] = (copy_fit(fit), k[1])
 
 
-def _copy(fit):
+ABSENT = object()            # recall's answer where nothing is kept
+
+
+def recall(tag: str, k):
+    """The answer kept by :func:`remember` under *tag* and *k* (from :func:`key`), or :data:`ABSENT`."""
+    if k is None or _MEMO is None:
+        return ABSENT
+    hit = _MEMO.get((tag,) + k[0])
+    return ABSENT if hit is None else hit[0]
+
+
+def remember(tag: str, k, answer) -> None:
+    """Keep *answer* — of a search whose result depends only on what *k* (from :func:`key`) describes — under
+    *tag* for this diagnosis (nothing when *k* is None)."""
+    if k is not None and _MEMO is not None:
+        _MEMO[(tag,) + k[0]] = (answer, k[1])
+
+
+def copy_fit(fit):
     """A copy whose later changes (its covariance, notes in ``fit_info``, warnings) stay its own."""
     out = copy.copy(fit)
     out.fit_info = dict(fit.fit_info)
@@ -123,4 +141,4 @@ def _copy(fit):
     return out
 
 
-__all__ = ["fit_memo", "key", "lookup", "memoised", "store"]
+__all__ = ["ABSENT", "copy_fit", "fit_memo", "key", "lookup", "memoised", "recall", "remember", "store"]

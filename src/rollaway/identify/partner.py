@@ -167,6 +167,20 @@ def _departure_jobs(params, first: str, first_fit: FitResult, name: str, pair: F
 
 
 def beside_reformed(data, params, first: str, first_fit: FitResult, names, reform=None, departures=()):
+    """:func:`_beside_reformed`, asked once per diagnosis for the same data, first effect at the same values (the
+    partner test and the partial verdict ask it of the same fit), candidates, brake parameters and departures: the
+    answer is kept (:func:`rollaway.identify.memo.remember`), its catalogue pair returned as a copy."""
+    from rollaway.identify import memo
+    k = memo.key(data, [first, *names], params, {"start": first_fit.values})
+    tag = "beside_reformed " + " ".join(departures)
+    got = memo.recall(tag, k)
+    if got is memo.ABSENT:
+        got = _beside_reformed(data, params, first, first_fit, names, reform, departures)
+        memo.remember(tag, k, got)
+    return None if got is None else (got[0], memo.copy_fit(got[1]), got[2], dict(got[3]))
+
+
+def _beside_reformed(data, params, first: str, first_fit: FitResult, names, reform=None, departures=()):
     """A second effect on the evidence it has beside the first effect *first* re-formed (its hook as a linear
     spline, :func:`rollaway.identify.shape.flexible_effect`), for when the first's catalogue form is wrong: then
     the pair keeps the first's misfit and the first re-formed absorbs part of the second, and a forward step on
@@ -205,7 +219,7 @@ def beside_reformed(data, params, first: str, first_fit: FitResult, names, refor
     if not pref["passes"] or not _beyond_own_reform(data, params, name, both):
         return None
     pair = calibrate(data, *pair_job[:2], **pair_job[2])
-    term = beyond_second_term(data, params, first, name, pair,
+    term = beyond_second_term(data, params, first, name, pair, give_up=True,
                               also=_departure_jobs(params, first, first_fit, name, pair, departures))
     if term is not None and not term["passes"]:
         return None
