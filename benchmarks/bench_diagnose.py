@@ -28,6 +28,7 @@ from pathlib import Path
 import numpy as np
 
 sys.path.insert(0, str(Path(__file__).resolve().parent))
+sys.path.insert(0, str(Path(__file__).resolve().parents[1]))     # tests.identify.bench_generator
 
 TESTS, DURATION_S = 8, 3600.0
 TARGETS = {288_000: (6.0, 400.0), 2_880_000: (40.0, 1536.0)}
@@ -133,7 +134,6 @@ HELD_OUT = {
 def held_out() -> None:
     """CPU and wall seconds of ``rollaway diagnose`` on :data:`HELD_OUT` through the CLI, and in reference units."""
     from reference import reference_unit_s
-    sys.path.insert(0, str(Path(__file__).resolve().parents[1]))
     from tests.identify.bench_generator import generate
     ref = reference_unit_s()
     print(f"reference unit (300 000 raw mj_step): {ref:.2f} s; goal: ≤ 5 s per set")
@@ -206,7 +206,6 @@ def two_effect_sets(first: int, stop: int):
     """(name, data maker) of the two-effect held-out campaigns *first* … *stop* − 1 of
     ``tests/uncertainty/band_questions.py`` (a random pair of catalogue and other forms, 5- and 1-min sampling,
     other drums, one direction in every third)."""
-    sys.path.insert(0, str(Path(__file__).resolve().parents[1]))
     from tests.uncertainty.band_questions import two_effect_data
     return [(f"t{i:03d} " + "+".join(map(str, two_effect_data(i)[0])), lambda i=i: two_effect_data(i)[5])
             for i in range(first, stop)]
@@ -216,7 +215,6 @@ def stress(sets=None) -> None:
     """Wall seconds of ``rollaway diagnose`` through the CLI on each of *sets* ((name, data maker); default
     :func:`stress_sets`), their mean and the slowest, and the reference unit measured before and after."""
     from reference import reference_unit_s
-    sys.path.insert(0, str(Path(__file__).resolve().parents[1]))
     from tests.identify.bench_generator import generate
     if sets is None:
         sets = [(name, lambda kw=kw: generate(**kw)) for name, kw in stress_sets()]

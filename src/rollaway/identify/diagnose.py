@@ -34,6 +34,7 @@ from rollaway.identify.drum import calibrate_drum, free_needed, predictive_covar
 from rollaway.identify.diagnosis import Diagnosis
 from rollaway.identify.form import loose_shape, partial_form
 from rollaway.identify.fitting import single_blas_thread
+from rollaway.identify.lookahead import runner_up_path
 from rollaway.identify.memo import memoised
 from rollaway.identify.intervals import covariance_variances, ess_inflation, mixture_variances, restate
 from rollaway.bench.measurements import Measurements
@@ -109,6 +110,19 @@ def diagnose(data: Measurements, params=None, effects=None, *, noise_torque_Nm: 
                       f"{'do not differ' if not _test_offsets(current, nq) else 'differ, but structure remains within the tests'}).")
         if step == 1:
             first_cands, base_cv = cands, cur_cv
+        up = None if passing else runner_up_path(data, params, names, first_cands, base_cv, chosen, current, cur_cv,
+                                                 nq, drum.held())
+        if up is not None:                                   # beside the first step's runner-up, a pair beats it
+            up, (cands, strong, passing, cur_cv), was_cv = up
+            steps.append({"step": "runner-up first", "replaced": chosen[0], "by": up.effect,
+                          "delta_bic": float(passing[0].fit.bic - current.bic), "cv_score": passing[0].cv_score,
+                          "current_cv": was_cv})
+            ev.append(f"Step {step}: nothing passes beside {chosen[0]}, but beside {up.effect} (the first step's "
+                      f"runner-up, {up.fit.bic - current.bic:+.1f} BIC from it) {passing[0].effect} does, and the "
+                      f"pair lowers BIC below {chosen[0]} alone by {current.bic - passing[0].fit.bic:.1f} with "
+                      f"held-out error {was_cv:.1f} → {passing[0].cv_score:.1f}: {chosen[0]} had taken part of "
+                      f"the second effect's signature; {up.effect} replaces it (runner_up_path).")
+            chosen, current, fits = [up.effect], up.fit, [up.fit]
         if not passing:
             steps.append({"step": step, "added": None, "best": cands[0].effect if cands else None,
                           "delta_bic": cands[0].delta_bic if cands else None,

@@ -1,0 +1,63 @@
+"""A second selection step beside the first step's runner-up, for :mod:`rollaway.identify.diagnose`.
+
+Forward selection is greedy: the first step keeps the candidate with the lowest BIC, and the second step only looks
+beside it.  Where two first effects are close (a friction law and a lining modulus law falling with temperature
+differ only through the self-energising factor) and a second effect is also in the data, the one that wins the first
+step may be the one that absorbed part of the second (friction's change of the downhill/uphill ratio taking part
+of a creep), and beside it the second effect no longer passes.  The pair that explains the data is then never
+fitted.  :func:`runner_up_path` takes the second step beside the runner-up too — a beam of two at the first step,
+taken only where the greedy path stopped at one effect — and returns it where it finds a pair that beats the
+greedy verdict by the selection's own bar on BIC and on held-out tests.  The pair then faces every later test of
+a pair (exchange, elimination, its own evidence: :mod:`rollaway.identify.partner`), like one the greedy path found.
+"""
+from __future__ import annotations
+
+from rollaway.identify.selection import BIC_THRESHOLD, cv_score, forward_step, per_test_signature
+
+LOOKAHEAD_BIC = 20.0         # [assumed] step-1 runners-up within this BIC of the best are given a second step: twice
+                             # the selection's bar, the most a missed second effect was measured to shift the first
+                             # step's order (two-effect held-out campaigns: friction ahead of a true modulus law by
+                             # 11.4 beside a missed creep)
+LOOKAHEAD_TOP = 1            # at most this many runners-up are given a second step
+
+
+def runners_up(first_cands: list, first: str, base_cv, params) -> list:
+    """The step-1 candidates within :data:`LOOKAHEAD_BIC` of *first*'s that passed the first step themselves (BIC below
+    the bar, held-out error below the drum alone's *base_cv*), fitted with the brake parameters of *params*, best
+    first; at most :data:`LOOKAHEAD_TOP`."""
+    best = next((c for c in first_cands if c.effect == first), None)
+    if best is None or base_cv is None:
+        return []
+    free = set(getattr(params, "free", ()))
+    return [c for c in first_cands
+            if c is not best and c.delta_bic < BIC_THRESHOLD and c.delta_bic - best.delta_bic < LOOKAHEAD_BIC
+            and c.cv_score is not None and c.cv_score < base_cv and c.fit.jacobian is not None
+            and set(c.fit.model.free) <= free][:LOOKAHEAD_TOP]
+
+
+def runner_up_path(data, params, names, first_cands: list, base_cv, chosen: list[str], current, cur_cv, nq,
+                   held_brake=()):
+    """Where the second step beside the one selected effect *chosen* (fit *current*, held-out error *cur_cv* or None)
+    added nothing: the second step beside each runner-up of the first (:func:`runners_up`).  A pair found there
+    must lower BIC below *current*'s by more than :data:`~rollaway.identify.selection.BIC_THRESHOLD` and predict
+    held-out tests better than *current* (and than the runner-up alone: the step's own test).
+    Returns (the runner-up's candidate, :func:`~rollaway.identify.selection.forward_step`'s answer beside it with
+    only those pairs passing, *current*'s held-out error), or None."""
+    ups = runners_up(first_cands, chosen[0], base_cv, params) if len(chosen) == 1 else []
+    if not ups:
+        return None
+    for up in ups:
+        cands, strong, passing, up_cv = forward_step(data, params, names, up.fit, [up.effect], 2,
+                                                     per_test_signature(up.fit, nq), held_brake=held_brake)
+        passing = [c for c in passing if c.fit.bic - current.bic < BIC_THRESHOLD]
+        if not passing:
+            continue
+        if cur_cv is None:
+            cur_cv = float(cv_score(data, chosen, params, current).sum())
+        passing = [c for c in passing if c.cv_score < cur_cv]
+        if passing:
+            return up, (cands, strong, passing, up_cv), cur_cv
+    return None
+
+
+__all__ = ["LOOKAHEAD_BIC", "LOOKAHEAD_TOP", "runner_up_path", "runners_up"]
