@@ -120,8 +120,11 @@ def diagnose(data: Measurements, params=None, effects=None, *, noise_torque_Nm: 
             ev.append(f"Step {step}: nothing passes beside {chosen[0]}, but beside {up.effect} (the first step's "
                       f"runner-up, {up.fit.bic - current.bic:+.1f} BIC from it) {passing[0].effect} does, and the "
                       f"pair lowers BIC below {chosen[0]} alone by {current.bic - passing[0].fit.bic:.1f} with "
-                      f"held-out error {was_cv:.1f} → {passing[0].cv_score:.1f}: {chosen[0]} had taken part of "
-                      f"the second effect's signature; {up.effect} replaces it (runner_up_path).")
+                      f"held-out error {was_cv:.1f} → {passing[0].cv_score:.1f}: "
+                      + (f"the pair the second step beside {chosen[0]} did not reach from its values"
+                         if passing[0].effect == chosen[0] else
+                         f"{chosen[0]} had taken part of the second effect's signature; {up.effect} replaces it")
+                      + " (runner_up_path).")
             chosen, current, fits = [up.effect], up.fit, [up.fit]
         if not passing:
             steps.append({"step": step, "added": None, "best": cands[0].effect if cands else None,
