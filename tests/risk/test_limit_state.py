@@ -125,3 +125,36 @@ def test_a_fleet_below_the_tested_forces_carries_the_benchs_own_force_extrapolat
         pop = load_population(write_population("", head=head))
         spread[bool(edge)] = float(np.std(model_draws(pop, 4000, np.random.default_rng(0))["eps"]))
     assert spread[True] > 20 * spread[False] and spread[True] > 0.05, spread
+
+
+def test_a_fleet_facing_the_untested_direction_carries_the_torque_over_as_a_single_car_does(write_population, tmp_path):
+    """A model calibrated on downhill tests with μ_d = 0.15 (a softer lining's torque scale): cars facing uphill have
+    their brake margin carried over by a friction coefficient drawn apart from μ_d
+    (rollaway.uncertainty.draws.carry_factor, the same as a single car's band), the median margin lower than with
+    μ_d's own direction ratio; cars facing the tested direction are untouched."""
+    from rollaway.model.model_file import save_model
+    from rollaway.risk.limit_state import model_draws
+    from rollaway.uncertainty.draws import carry_factor
+    pred = {"model_error_rel_sd": 0.0, "model_error_floor_rel_sd": 0.0, "model_error_dof": 5,
+            "tested_hand_force_N": [180.0, 360.0], "tested_initial_temp_C": [100.0, 250.0],
+            "tested_duration_s": 3600.0, "tested_directions": ["downhill"]}
+    model = DrumModel(dataclasses.replace(DrumModel("paper").params, mu_drum=0.15),
+                      covariance=Covariance(("mu_drum",), np.array([[1e-8]])), predictive=pred)
+    path = tmp_path / "down.toml"
+    save_model(model, path)
+    got = {}
+    for direction in ("uphill", "downhill"):
+        head = (f'params = "{path.name}"\ngrade_pct = 20\ndirection = "{direction}"\noccupants = 1\n'
+                'hand_force_N = 300\nduration_s = 3600\ninitial_drum_temp_C = 200\n')
+        pop = load_population(write_population("", head=head))
+        draws = model_draws(pop, 2000, np.random.default_rng(0))
+        assert "friction_z" in draws
+        carried = margins(pop, {}, 2000, draws).brake
+        plain = margins(pop, {}, 2000, {k: v for k, v in draws.items() if k != "friction_z"}).brake
+        got[direction] = (carried, plain, draws["friction_z"])
+    carried, plain, z = got["uphill"]
+    p = model.params
+    expect = plain * carry_factor(p.mu_drum, p.shoe_arm_normal_m, p.shoe_arm_friction_m, -1.0, z)
+    assert carried == pytest.approx(expect, rel=1e-3) and np.median(carried) < 0.9 * np.median(plain)   # μ_d drawn ± 1e-4
+    carried, plain, _ = got["downhill"]
+    assert np.array_equal(carried, plain)

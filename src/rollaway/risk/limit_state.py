@@ -90,11 +90,28 @@ def margins(population, values: dict[str, np.ndarray], n: int | None = None, dra
                 m = _least_margin_with_effects(model, params, effect_values, f, g, d, occ, dur, idx.size)
             else:
                 m = min_brake_margin(params, f, g, d, occ, dur)
+            if draws is not None and "friction_z" in draws:     # a direction the bench did not test
+                m = _carried(population.model, params, g, d, m, draws["friction_z"][idx])
             b = np.minimum(b, np.broadcast_to(m, (idx.size,)))
         if draws is not None and "eps" in draws:
             b = b * (1.0 + draws["eps"][idx])
         brake[idx], tyre[idx] = b, np.broadcast_to(t, (idx.size,))
     return Margins(brake, tyre)
+
+
+def _carried(model: DrumModel, params, grade, direction: str, margin, z) -> np.ndarray:
+    """*margin* of cars facing *direction* on *grade*, carried over where their effective direction is one
+    *model*'s bench did not test (:func:`rollaway.uncertainty.draws.untested_direction_factor`: a friction
+    coefficient drawn apart from each car's μ_d, its place in the posterior *z*)."""
+    from rollaway.hold.closed_form import _effective
+    from rollaway.uncertainty.draws import carried_over, carry_factor
+    _, sign = _effective(grade, direction)
+    sign = np.broadcast_to(np.asarray(sign, float), np.shape(z))
+    carry = carried_over(model, sign)
+    if not np.any(carry):
+        return margin
+    f = carry_factor(params.mu_drum, params.shoe_arm_normal_m, params.shoe_arm_friction_m, sign, z)
+    return margin * np.where(carry, f, 1.0)
 
 
 def _least_margin_with_effects(model: DrumModel, params, effect_values, force, grade, direction, occupants,
@@ -192,7 +209,10 @@ def model_draws(population, n: int, rng: np.random.Generator) -> dict | None:
         own = own_record(pred, m)
         eps[owner == k] = model_error_draws(own, int(np.sum(owner == k)), factor, rng,
                                             edge_sd(own, force, f0, level))
-    return {"groups": groups, "effects": effects, "eps": eps}
+    out = {"groups": groups, "effects": effects, "eps": eps}
+    if len(pred.get("tested_directions") or ()) == 1:     # the untested direction's friction coefficient (_carried)
+        out["friction_z"] = rng.standard_normal(n)
+    return out
 
 
 def _draw_chunked(model, n, seed, draw_values, marginal=False):

@@ -120,15 +120,79 @@ class Risk:
         return {k: float(v[i]) for k, v in self.values.items()}
 
 
+FRICTION_PRIOR = (0.4, 0.25)    # [assumed] the lining's friction coefficient alone: the set's μ_d with a relative spread
+                                # of 25 % (drum linings of 0.3–0.5)
+SCALE_REL_SD = 0.3              # [assumed] relative spread of the rest of the torque scale μ_d·r_d·A·E/l (eq. 17b) of
+                                # real drums around the set's: radius, lining modulus and thickness, drum stiffness
+
+
+def untested_direction_factor(model: DrumModel, vals: dict, n: int, sign, seed) -> np.ndarray:
+    """Facing a direction the bench did not test: the factor on each of *n* draws' torque that replaces the
+    direction ratio of its fitted μ_d by that of a friction coefficient drawn apart from it (*vals*: the draws of
+    :func:`draw_values`; *sign*: +1 downhill, −1 uphill, broadcast against the draws).
+
+    Tests in one direction pin the torque scale μ_d·r_d·A·E (eq. 17b), not μ_d itself: a drum with a softer or
+    thicker lining, or another radius, is fitted with another μ_d (held-out band campaign 41: a 5 mm lining of
+    170 MPa, μ_d fitted 0.15 for a friction coefficient of 0.36, and the uphill band 1.08–1.50 above a truth of
+    1.04).  The other direction's torque follows the tested one's through the self-energising factors
+    k(μ, s) = l_f / (l_f − s·μ·l_fr) of eqs. (18)–(21), whose μ is the friction coefficient alone.  Each draw's μ is
+    drawn from its posterior given the draw's μ_d: log μ and the log of the rest of the scale are independent
+    Gaussians a priori (:data:`FRICTION_PRIOR`, :data:`SCALE_REL_SD`) whose sum is log μ_d.  The factor is
+    [k(μ, s)/k(μ, −s)] / [k(μ_d, s)/k(μ_d, −s)]: the tested direction's torque is unchanged.  Taken at the fitted
+    μ_d, not along a friction effect's change of μ with temperature; 1 where a shoe self-locks."""
+    p = model.params
+    mu_d = np.asarray(vals.get("mu_drum", np.full(n, p.mu_drum)), float)
+    l_f = p.shoe_arm_normal_m
+    l_fr = np.asarray(vals["shoe_arm_ratio"], float) * l_f if "shoe_arm_ratio" in vals else p.shoe_arm_friction_m
+    z = np.random.default_rng(None if seed is None else (int(seed), 18)).standard_normal(n)
+    s = np.asarray(sign, float)
+    if s.ndim:                                     # one sign per column (a grade each): draws along the rows
+        mu_d, z = mu_d[:, None], z[:, None]
+        l_fr = l_fr[:, None] if np.ndim(l_fr) else l_fr
+    return carry_factor(mu_d, l_f, l_fr, s, z)
+
+
+def carry_factor(mu_drum, arm_normal_m, arm_friction_m, sign, z) -> np.ndarray:
+    """:func:`untested_direction_factor` for fitted μ_d values *mu_drum*, shoe arms l_f and l_fr [m] and standard
+    normal deviates *z* (one per draw: the friction coefficient's place in its posterior), all broadcast."""
+    from rollaway.physics.drum import self_energising_factor
+    mu_d = np.maximum(np.asarray(mu_drum, float), 1e-6)
+    w_mu, w_scale = FRICTION_PRIOR[1] ** -2, SCALE_REL_SD ** -2
+    mu = np.exp((w_mu * np.log(FRICTION_PRIOR[0]) + w_scale * np.log(mu_d)) / (w_mu + w_scale)
+                + np.asarray(z, float) / np.sqrt(w_mu + w_scale))
+    s = np.asarray(sign, float)
+
+    def ratio(m):
+        return (self_energising_factor(m, s, arm_normal_m, arm_friction_m)
+                / self_energising_factor(m, -s, arm_normal_m, arm_friction_m))
+    with np.errstate(invalid="ignore", divide="ignore"):
+        f = ratio(mu) / ratio(mu_d)
+    return np.where(np.isfinite(f) & (f > 0.0), f, 1.0)
+
+
+def carried_over(model: DrumModel, sign) -> np.ndarray | bool:
+    """True where the effective direction *sign* (+1 downhill, −1 uphill; a grade below zero turns it) is one
+    *model*'s bench did not test: the torque there is carried over from the tested one
+    (:func:`untested_direction_factor`)."""
+    dirs = model.predictive.get("tested_directions")
+    if not dirs or len(dirs) > 1:
+        return np.zeros(np.shape(sign), bool) if np.ndim(sign) else False
+    tested = 1.0 if dirs[0] == "downhill" else -1.0
+    return np.asarray(sign, float) != tested if np.ndim(sign) else float(sign) != tested
+
+
 def _least_margins(model: DrumModel, n: int, seed, force_N: float, sign: float, t_req_Nm: np.ndarray,
-                   initial_temp_C, duration_s: float, marginal: bool = False):
+                   initial_temp_C, duration_s: float, marginal: bool = False, carry: bool = False):
     """Parameter draws of *model* (none without a covariance; *marginal*: :func:`draw_values`) and each draw's
-    least brake margin."""
+    least brake margin; *carry*: the torque carried over to the untested direction by
+    :func:`untested_direction_factor`."""
     from rollaway.hold import validate_hand_force
     from rollaway.hold.numeric import MarginFunction, least_margin
 
     vals = draw_values(model, n, seed, marginal) if model.covariance is not None else {}
     mu = vals.get("mu_drum", np.full(n, model.params.mu_drum))
+    if carry:
+        t_req_Nm = np.asarray(t_req_Nm, float) / untested_direction_factor(model, vals, n, sign, seed)
     fn = MarginFunction(model, np.full(n, float(validate_hand_force(force_N))), np.full(n, float(sign)),
                         t_req_Nm, mu, None, initial_temp_C, heat_transfer_W_m2K=vals.get("heat_transfer_W_m2K"),
                         values={k: v for k, v in vals.items() if k not in LEGACY_FREE})
@@ -249,7 +313,7 @@ def rollaway_risk(model: DrumModel, *, hand_force_N: float, grade_pct: float, di
         idx = np.flatnonzero(owner == k)
         vals, fn, least = _least_margins(m, int(c), None if seed is None else seed + k, hand_force_N, sign,
                                          t_req / (1.0 + eps[idx]), initial_temp_C, duration_s,
-                                         untested_direction(model, direction))
+                                         untested_direction(model, direction), bool(carried_over(model, sign)))
         brake[idx] = least
         if k == 0:
             vals0 = vals
@@ -310,11 +374,16 @@ def least_force_band(model: DrumModel, grades_pct, direction: str, occupants: in
         eps = model_error_draws(own_record(model.predictive, m), int(c), factor, rng)
         g, sign = _effective(grades, direction)
         t_req = np.asarray(required_torque(m.params, g, occupants), float)
+        carry = carried_over(model, np.broadcast_to(sign, grades.shape))
+        if np.any(carry):
+            f = untested_direction_factor(m, vals, int(c), np.broadcast_to(sign, grades.shape),
+                                          None if seed is None else seed + k)
+            t_req = t_req[None, :] / np.where(carry[None, :], f, 1.0)
         rep = lambda a: np.repeat(np.asarray(a, float)[:, None], grades.size, axis=1).ravel()  # noqa: E731
         mu = rep(vals.get("mu_drum", np.full(c, m.params.mu_drum)))
         h = rep(vals.get("heat_transfer_W_m2K", np.full(c, m.params.heat_transfer_W_m2K)))
         fn = MarginFunction(m, np.zeros(c * grades.size), np.tile(np.broadcast_to(sign, grades.shape), c),
-                            (t_req[None, :] / (1.0 + eps[:, None])).ravel(), mu, None, t0, heat_transfer_W_m2K=h,
+                            (np.broadcast_to(t_req, (c, grades.size)) / (1.0 + eps[:, None])).ravel(), mu, None, t0, heat_transfer_W_m2K=h,
                             values={n: rep(v) for n, v in vals.items() if n not in LEGACY_FREE})
         forces.append(least_hand_force(fn, duration_s).reshape(c, grades.size))
     f = np.concatenate(forces, axis=0)
