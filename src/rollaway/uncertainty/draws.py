@@ -383,7 +383,8 @@ def least_force_band(model: DrumModel, grades_pct, direction: str, occupants: in
         mu = rep(vals.get("mu_drum", np.full(c, m.params.mu_drum)))
         h = rep(vals.get("heat_transfer_W_m2K", np.full(c, m.params.heat_transfer_W_m2K)))
         fn = MarginFunction(m, np.zeros(c * grades.size), np.tile(np.broadcast_to(sign, grades.shape), c),
-                            (np.broadcast_to(t_req, (c, grades.size)) / (1.0 + eps[:, None])).ravel(), mu, None, t0, heat_transfer_W_m2K=h,
+                            (np.broadcast_to(t_req, (c, grades.size)) / (1.0 + eps[:, None])).ravel(), mu, None,
+                            t0, heat_transfer_W_m2K=h,
                             values={n: rep(v) for n, v in vals.items() if n not in LEGACY_FREE})
         forces.append(least_hand_force(fn, duration_s).reshape(c, grades.size))
     f = np.concatenate(forces, axis=0)
