@@ -120,8 +120,8 @@ class Risk:
         return {k: float(v[i]) for k, v in self.values.items()}
 
 
-FRICTION_PRIOR = (0.4, 0.25)    # [assumed] the lining's friction coefficient alone: the set's μ_d with a relative spread
-                                # of 25 % (drum linings of 0.3–0.5)
+FRICTION_PRIOR = (0.4, 0.25)    # [assumed] the lining's friction coefficient alone: the set's μ_d with a relative
+                                # spread of 25 % (drum linings of 0.3–0.5)
 SCALE_REL_SD = 0.3              # [assumed] relative spread of the rest of the torque scale μ_d·r_d·A·E/l (eq. 17b) of
                                 # real drums around the set's: radius, lining modulus and thickness, drum stiffness
 
