@@ -48,3 +48,27 @@ def test_hold_bad_input(run_cli, args, needle):
 def test_bad_duration_blames_duration_flag(run_cli, value):
     code, _, err = run_cli("hold", "--grade-pct", "20", "--hand-force-N", "300", "--duration-s", value)
     assert code == 2 and err.startswith("rollaway hold: error: --duration-s") and "--t-end-s" not in err
+
+
+def test_a_hold_the_band_doubts_is_said_to_be_unsure(run_cli, tmp_path):
+    """A model calibrated on downhill tests only, asked facing uphill with --uncertainty: where its predictive band
+    gives a roll-away a probability of 5 % or more, the verdict of the calibrated values says it is not sure (the exit
+    code stays the calibrated values'); where the band agrees, the verdict is plain."""
+    import numpy as np
+    from rollaway.model.drum_model import Covariance, DrumModel
+    from rollaway.model.model_file import save_model
+    model = DrumModel("paper", covariance=Covariance(("mu_drum",), np.array([[0.01 ** 2]])),
+                      predictive={"model_error_rel_sd": 0.0, "model_error_floor_rel_sd": 0.005, "model_error_dof": 5,
+                                  "tested_hand_force_N": [200.0, 400.0], "tested_initial_temp_C": [150.0, 250.0],
+                                  "tested_duration_s": 3600.0, "tested_directions": ["downhill"]})
+    path = tmp_path / "down.toml"
+    save_model(model, path)
+    lines = {}
+    for grade in (8, 24):
+        code, out, _ = run_cli("hold", "--grade-pct", grade, "--hand-force-N", 300, "--direction", "uphill",
+                               "--occupants", 1, "--duration-s", 3600, "--params", path, "--uncertainty", 400)
+        lines[grade] = (code, out.strip().splitlines()[-1])
+    code, last = lines[24]
+    assert code == 0 and last.startswith("verdict: HOLDS at the calibrated values, NOT SURE: roll-away probability"), last
+    code, last = lines[8]
+    assert code == 0 and last.startswith("verdict: HOLDS — beyond the bench data: facing uphill was not tested"), last

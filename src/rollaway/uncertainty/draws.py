@@ -102,6 +102,9 @@ class Risk:
         sh = self.shares
         parts = ", ".join(f"{k.replace('_', ' ')} {v:.0%}" for k, v in sh.items()) if sh else "no spread"
         beyond = ("; BEYOND THE DATA: " + "; ".join(self.flags) + " (band widened)") if self.flags else ""
+        if (self.detail or {}).get("carried_over"):
+            beyond += ("; its torque carried over from the tested direction with the friction coefficient drawn "
+                       "apart from mu_drum (one direction pins the torque scale only)")
         return f"band from {parts}{beyond}"
 
     def _repr_html_(self) -> str:  # notebooks
@@ -342,7 +345,7 @@ def rollaway_risk(model: DrumModel, *, hand_force_N: float, grade_pct: float, di
     detail = {"shares": shares, "flags": flags, "extrapolation_factor": factor,
               "model_error_rel_sd": model_error_sd(pred, factor, edge),
               "models": [{"name": m.name, "weight": float(w), "draws": int(c)} for (w, m), c in zip(parts, counts)],
-              "half_width": _half_width(least)}
+              "half_width": _half_width(least), "carried_over": bool(carried_over(model, sign))}
     main = owner == 0
     return Risk(draws, float(np.mean(least < 1.0)), pct, pct_b, tp, tyre, vals0, least[main], t_roll[main],
                 detail)
