@@ -64,3 +64,28 @@ def test_bad_scenario_file_names_the_key(run_cli, tmp_path):
     p = scenario(tmp_path, "bad", extra="hand_forse_N = 3\n")
     code, _, err = run_cli("check", p)
     assert code == 2 and "hand_forse_N" in err and "hand_force_N" in err
+
+
+def test_an_analytic_pass_the_band_doubts_says_so_in_its_reason():
+    """With --uncertainty, a preset case whose predictive band gives the other answer 5 % or more keeps the calibrated
+    values' verdict and says in its reason that it is not sure: a model calibrated on downhill tests with μ_d = 0.3,
+    facing uphill on paper30 (the friction coefficient drawn apart from μ_d); the sure rows keep their plain reason."""
+    import dataclasses
+
+    import numpy as np
+
+    from rollaway.model.drum_model import Covariance, DrumModel
+    from rollaway.sweep.compliance import analytic_rows
+    model = DrumModel(dataclasses.replace(DrumModel("paper").params, mu_drum=0.3),
+                      covariance=Covariance(("mu_drum",), np.array([[0.01 ** 2]])),
+                      predictive={"model_error_rel_sd": 0.0, "model_error_floor_rel_sd": 0.005, "model_error_dof": 5,
+                                  "tested_hand_force_N": [200.0, 400.0], "tested_initial_temp_C": [150.0, 250.0],
+                                  "tested_duration_s": 3600.0, "tested_directions": ["downhill"]})
+    c = analytic_rows(["paper30", "fmvss135"], model, 400)
+    rows = {(p, d): (v, r, q) for p, d, v, r, q in zip(c["preset"], c["direction"], c["verdict"], c["reason"],
+                                                       c["rollaway_probability"])}
+    verdict, reason, prob = rows["paper30", "uphill"]
+    assert verdict == "PASS" and prob >= 0.05 and reason == (
+        f"holds at the calibrated values; NOT SURE: roll-away probability {prob:.2f} in the predictive band")
+    assert rows["paper30", "downhill"][:2] == ("FAIL", "rear tyres skid (adhesion)")      # sure: the tyres slide
+    assert rows["fmvss135", "downhill"][:2] == ("PASS", "holds")

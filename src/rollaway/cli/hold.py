@@ -97,22 +97,10 @@ def _summary_text(v, duration_s: float, model, risk) -> str:
                      f"{lm['p95']:.3f}; slip time p5/p50/p95 {fmt_t(ts['p5'])}/{fmt_t(ts['p50'])}/{fmt_t(ts['p95'])}")
         lines.append(f"  {risk.band_words()}")
     beyond = f" — beyond the bench data: {'; '.join(risk.flags)}" if risk is not None and risk.flags else ""
+    doubt = "" if risk is None else risk.not_sure(v.holds)      # the band gives the other answer ≥ 5 %
     lines.append(f"verdict: {'HOLDS' if v.holds else 'ROLLS AWAY'}" + ("" if v.holds else f" ({v.reason})")
-                 + _not_sure(v.holds, risk) + beyond)
+                 + (f" at the calibrated values, {doubt}" if doubt else "") + beyond)
     return "\n".join(lines)
-
-
-NOT_SURE = 0.05              # a band that gives the other answer at least this probability makes the verdict unsure
-
-
-def _not_sure(holds: bool, risk) -> str:
-    """Where the predictive band gives the other answer a probability of at least :data:`NOT_SURE`: the verdict is
-    the calibrated values', and the words say so."""
-    if risk is None:
-        return ""
-    other = risk.rollaway_probability if holds else 1.0 - risk.rollaway_probability
-    return (f" at the calibrated values, NOT SURE: {'roll-away' if holds else 'hold'} probability {other:.2f} in "
-            f"the predictive band") if other >= NOT_SURE else ""
 
 
 def register(app: typer.Typer) -> None:

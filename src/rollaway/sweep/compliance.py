@@ -123,6 +123,9 @@ def analytic_rows(preset_names, params, uncertainty: int | None = None) -> dict[
                                      initial_temp_C=pr.initial_temp_C, draws=uncertainty)
                 cols["rollaway_probability"].append(risk.rollaway_probability)
                 cols["beyond_bench_data"].append("; ".join(risk.flags))
+                doubt = risk.not_sure(v.holds)          # the band gives the other answer ≥ 5 %: say so
+                if doubt:
+                    cols["reason"][-1] = f"{v.reason} at the calibrated values; {doubt}"
     return cols
 
 

@@ -19,6 +19,7 @@ from rollaway.model.drum_model import DrumModel
 
 MAX_REJECTION_ROUNDS = 50
 PERCENTILES = (5.0, 50.0, 95.0)
+NOT_SURE = 0.05              # a band that gives the other answer at least this probability makes a verdict unsure
 
 
 def draw_values(model: DrumModel, n: int, seed: int | None = 0, marginal: bool = False) -> dict[str, np.ndarray]:
@@ -96,6 +97,13 @@ class Risk:
                 "brake_margin_percentiles": self.brake_margin_percentiles,
                 "slip_time_percentiles_s": self.slip_time_percentiles_s, "tyre_margin": self.tyre_margin,
                 **(self.detail or {})}
+
+    def not_sure(self, holds: bool) -> str:
+        """Words where the band gives the answer other than *holds* (the calibrated values') a probability of at
+        least :data:`NOT_SURE`: ``"NOT SURE: roll-away probability 0.23 in the predictive band"``; else ``""``."""
+        other = self.rollaway_probability if holds else 1.0 - self.rollaway_probability
+        return (f"NOT SURE: {'roll-away' if holds else 'hold'} probability {other:.2f} in the predictive band"
+                if other >= NOT_SURE else "")
 
     def band_words(self) -> str:
         """One line: the band's parts and what lies beyond the data."""
