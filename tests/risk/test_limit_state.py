@@ -130,11 +130,11 @@ def test_a_fleet_below_the_tested_forces_carries_the_benchs_own_force_extrapolat
 def test_a_fleet_facing_the_untested_direction_carries_the_torque_over_as_a_single_car_does(write_population, tmp_path):
     """A model calibrated on downhill tests with μ_d = 0.15 (a softer lining's torque scale): cars facing uphill have
     their brake margin carried over by a friction coefficient drawn apart from μ_d
-    (rollaway.uncertainty.draws.carry_factor, the same as a single car's band), the median margin lower than with
+    (rollaway.uncertainty.direction.carry_factor, the same as a single car's band), the median margin lower than with
     μ_d's own direction ratio; cars facing the tested direction are untouched."""
     from rollaway.model.model_file import save_model
     from rollaway.risk.limit_state import model_draws
-    from rollaway.uncertainty.draws import carry_factor
+    from rollaway.uncertainty.direction import carry_factor
     pred = {"model_error_rel_sd": 0.0, "model_error_floor_rel_sd": 0.0, "model_error_dof": 5,
             "tested_hand_force_N": [180.0, 360.0], "tested_initial_temp_C": [100.0, 250.0],
             "tested_duration_s": 3600.0, "tested_directions": ["downhill"]}

@@ -381,7 +381,7 @@ def test_in_the_untested_direction_the_effect_sets_weights_move_toward_even(monk
     mixture, and its uphill band 0.12–0.75 lay wholly below the truth 1.07.  Downhill scores do not rank how the sets
     carry over uphill; with the weights halfway to even the band reaches the truth's side of 1."""
     from rollaway.model.drum_model import DrumModel
-    from rollaway.uncertainty.draws import UNTESTED_DIRECTION_SHARE, mixture_parts
+    from rollaway.uncertainty.direction import UNTESTED_DIRECTION_SHARE, mixture_parts
     from tests.uncertainty.band_questions import campaign as question_campaign
     import rollaway.identify.diagnose as dg
     seen, original = [], dg.diagnose

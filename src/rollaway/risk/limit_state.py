@@ -101,10 +101,10 @@ def margins(population, values: dict[str, np.ndarray], n: int | None = None, dra
 
 def _carried(model: DrumModel, params, grade, direction: str, margin, z) -> np.ndarray:
     """*margin* of cars facing *direction* on *grade*, carried over where their effective direction is one
-    *model*'s bench did not test (:func:`rollaway.uncertainty.draws.untested_direction_factor`: a friction
+    *model*'s bench did not test (:func:`rollaway.uncertainty.direction.untested_direction_factor`: a friction
     coefficient drawn apart from each car's μ_d, its place in the posterior *z*)."""
     from rollaway.hold.closed_form import _effective
-    from rollaway.uncertainty.draws import carried_over, carry_factor
+    from rollaway.uncertainty.direction import carried_over, carry_factor
     _, sign = _effective(grade, direction)
     sign = np.broadcast_to(np.asarray(sign, float), np.shape(z))
     carry = carried_over(model, sign)
@@ -164,8 +164,8 @@ def model_draws(population, n: int, rng: np.random.Generator) -> dict | None:
     widened for questions beyond the tested range at the population's median values
     (:func:`rollaway.uncertainty.predictive.extrapolation`).
     """
-    from rollaway.uncertainty.draws import (draw_values, mixture_parts, own_record, torque_level_ratio,
-                                            untested_direction, zero_torque_force)
+    from rollaway.uncertainty.direction import mixture_parts, untested_direction
+    from rollaway.uncertainty.draws import draw_values, own_record, torque_level_ratio, zero_torque_force
     from rollaway.physics.drum import direction_sign
     from rollaway.uncertainty.predictive import edge_sd, extrapolation, model_error_draws
 

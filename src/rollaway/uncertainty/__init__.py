@@ -9,6 +9,8 @@ Modules:
 * :mod:`rollaway.uncertainty.predictive`: that record in use: model-error draws, widened beyond the tested range;
 * :mod:`rollaway.uncertainty.draws`: draws of the fitted values (covariance) with the model error →
   roll-away probability and margin bands, least-force bands;
+* :mod:`rollaway.uncertainty.direction`: what those bands do facing a direction the bench did not test (the effect
+  sets' weights, the gap drawn, the torque carried over with a friction coefficient drawn apart from μ_d);
 * :mod:`rollaway.uncertainty.calibration_check`: do the bands hold the truth at their nominal rate on
   the user's own test design?
 
