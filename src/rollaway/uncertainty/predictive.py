@@ -113,14 +113,26 @@ def model_error_sd(pred: dict, factor: float, edge: float = 0.0) -> float:
 
 
 def model_error_draws(pred: dict, n: int, factor: float, rng: np.random.Generator, edge: float = 0.0) -> np.ndarray:
-    """n multiplicative torque errors ε (torque × (1 + ε)), Student-t with the record's dof, of scale
-    :func:`model_error_sd` (widened beyond the tested range by *factor*, at least *edge*).  The floor's share
-    (:data:`UNSEEN`) was measured with this Student-t: a Gaussian floor left 1-min bands at 135 N below 0.85."""
+    """n multiplicative torque errors ε (torque × (1 + ε)) of scale :func:`model_error_sd` (widened beyond the
+    tested range by *factor*, at least *edge*).
+
+    What is measured or extrapolated — ``rel_sd``·factor, the floor's growth with the distance beyond the tested
+    range, or *edge* where that decides — is Student-t with the record's dof: a scale estimated from a handful of
+    held-out tests, and stretched beyond them.  The share of the floor counted at every question
+    (:data:`UNSEEN`) and the transducer's gain are assumed magnitudes, not estimates: Gaussian, independent of
+    the rest.  (The Student-t on the growth keeps the 135 N questions, where the torque nearly vanishes, covered;
+    a Student-t on the unseen share too widened every question inside the tested range for no measured miss.)"""
     sd = model_error_sd(pred, factor, edge)
     if sd <= 0.0:
         return np.zeros(n)
     dof = max(int(pred.get("model_error_dof", 1)), 1)
-    eps = sd * rng.standard_t(dof, n)
+    floor = float(pred.get("model_error_floor_rel_sd", 0.0))
+    gain = TRANSDUCER_REL_SD if "model_error_rel_sd" in pred else 0.0
+    assumed = float(np.sqrt((UNSEEN * floor) ** 2 + gain ** 2))
+    if edge > 0.0 and float(edge) >= sd or assumed >= sd:
+        assumed = 0.0 if edge > 0.0 and float(edge) >= sd else sd
+    stretched = float(np.sqrt(max(sd * sd - assumed * assumed, 0.0)))
+    eps = stretched * rng.standard_t(dof, n) + assumed * rng.standard_normal(n)
     return np.clip(eps, -0.9, 9.0)       # a torque never changes sign through its model error
 
 
