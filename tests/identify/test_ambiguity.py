@@ -219,6 +219,23 @@ def test_a_loss_the_drum_imitated_is_suggested_on_positive_evidence_and_empty_ca
         assert d.verdict == "none" and not d.alternatives, (i, d.summary())
 
 
+def test_a_loss_the_free_drum_imitates_beyond_a_bic_drop_is_still_examined_and_needs_a_clear_heldout_gain():
+    """Where the free drum imitates a logarithmic cable creep so well that cable_relaxation does not even lower BIC
+    against it at step 1 (ΔBIC ≥ 0), its fit with eq. (24)'s slope held is still examined: two held-out campaigns
+    (one direction, 5-min) name it as the weak alternative of "none", with a held-out gain beyond HELDOUT_SE
+    standard errors; without the change they came out a bare "none"."""
+    from rollaway.identify.diagnose import diagnose
+    from tests.identify.heldout_names import campaign, judge
+    for i in (203, 215):
+        hidden, data = campaign(i)
+        d = diagnose(data)
+        step1 = {c["effect"]: c["delta_bic"] for c in d.as_dict()["candidates"]}
+        assert hidden == "cable_log" and step1["cable_relaxation"] >= 0.0, (i, step1)
+        assert judge(hidden, d)["right_or_alternative"] and d.verdict == "none", (i, d.summary())
+        weak = [a for a in d.alternatives if a["effects"] == ["cable_relaxation"]][0]
+        assert weak["held"] and weak["heldout_elpd"] > HELDOUT_SE * weak["heldout_se"], weak
+
+
 def test_autocorrelated_residuals_shrink_the_bic_difference_a_rival_must_beat():
     """A rival 12 BIC behind the verdict is not named on independent residuals, but is where the verdict's residuals
     are autocorrelated (variance inflation 3: the BIC difference counts three times the samples the data hold)."""

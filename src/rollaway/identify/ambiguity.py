@@ -212,13 +212,15 @@ def closest(base, candidates: list, base_cv, threshold: float, validity: dict, n
 
 
 def weak_alternatives(plan, base, candidates: list, validity: dict, noise_torque_Nm: float) -> list[dict]:
-    """Effects a "none" verdict cannot rule out: the best :data:`WEAK_TOP` step-1 *candidates* (ΔBIC < 0 against
-    the calibrated drum *base*), each compared fairly with the drum — refitted with the brake parameters of *plan*
+    """Effects a "none" verdict cannot rule out: the best :data:`WEAK_TOP` step-1 *candidates* (ΔBIC below
+    :data:`INDISTINGUISHABLE_BIC` against the calibrated drum *base*: one the free drum imitates need not lower it),
+    each compared fairly with the drum — refitted with the brake parameters of *plan*
     that it makes unnecessary held (backward elimination by BIC, μ_d always fitted; the bare drum freed them to
     imitate it: a loss with time at constant temperature takes the eq. (24) slope and offset) — and kept when that
     fit lowers BIC by more than −:data:`WEAK_BIC` (−:data:`WEAK_BIC_HELD` where it holds some of them: the effect
     then explains the data with fewer of the drum's parameters, which the BIC of the free drum does not see) and
-    predicts held-out tests better (:func:`heldout_difference` above :data:`SMALL_ELPD`) — or, where it lowers BIC
+    predicts held-out tests better (:func:`heldout_difference` above :data:`SMALL_ELPD`; beyond :data:`HELDOUT_SE`
+    standard errors too for a candidate that did not lower BIC against the free drum) — or, where it lowers BIC
     beyond the verdict's own bar (:data:`~rollaway.identify.selection.BIC_THRESHOLD`), when the held-out prediction
     does not prefer the drum (beyond :func:`preference_margin`): the drum imitated it, and two tests cannot say
     which — with the test that would settle it (:func:`tell_apart`).  At most
@@ -227,14 +229,15 @@ def weak_alternatives(plan, base, candidates: list, validity: dict, noise_torque
     out = []
     if base.jacobian is None:
         return out
-    for c in [c for c in candidates if c.delta_bic < 0.0][:WEAK_TOP]:
+    for c in [c for c in candidates if c.delta_bic < INDISTINGUISHABLE_BIC][:WEAK_TOP]:
         fit = _held_where_unneeded(plan, c.effect, c.fit)
         held = [] if fit is None else [n for n in plan.free if n not in fit.model.free]
         if fit is None or fit.bic - base.bic >= (WEAK_BIC_HELD if held else WEAK_BIC):
             continue
         elpd, se = heldout_difference(base, fit)
         strong = fit.bic - base.bic < BIC_THRESHOLD      # the verdict's bar, met only with drum parameters held
-        if elpd <= (-preference_margin(base, se) if strong else SMALL_ELPD):
+        bar = SMALL_ELPD if c.delta_bic < 0.0 else max(SMALL_ELPD, HELDOUT_SE * se)   # no step-1 evidence: a clear
+        if elpd <= (-preference_margin(base, se) if strong else bar):                  # held-out preference
             continue
         why = (f"with {c.effect} in the model{' ' + ', '.join(held) + ' need not be fitted and' if held else ''} BIC "
                f"drops by {base.bic - fit.bic:.1f} (selection needs {-(WEAK_BIC_HELD if held else WEAK_BIC):g} to "
