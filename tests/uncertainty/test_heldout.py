@@ -4,6 +4,7 @@ from __future__ import annotations
 from types import SimpleNamespace
 
 import numpy as np
+import pytest
 
 from rollaway.uncertainty.bands import model_error
 from rollaway.uncertainty.heldout import linear_step, loto_parameter_variance, loto_residuals
@@ -100,6 +101,46 @@ def test_model_error_grows_from_the_tested_edge():
     assert all(a < b for a, b in zip(s, s[1:]))
     assert abs(model_error_sd(pred, 2.0) ** 2 - (0.02 ** 2 + 0.02 ** 2 * (UNSEEN ** 2 + 1.0) + G ** 2)) < 1e-12
     assert model_error_sd({}, 2.0) == 0.0
+
+
+def test_the_measured_error_grows_beyond_the_hand_force_extrapolation_the_bench_made_only():
+    """Where the bench measured its own extrapolation in hand force (the record's edge: the highest force predicted
+    from the others, at 0.5 of the span), a question within that distance takes the measured error as measured
+    (factor less the distance) and the edge's error for the extrapolation; beyond it the growth resumes from the
+    edge's distance, with no jump.  Without an edge record, or for another distance (T_0), the factor is unchanged;
+    the floor still grows with the whole distance."""
+    from rollaway.uncertainty.predictive import (UNSEEN, extrapolation, measured_factor, model_error_draws,
+                                                 model_error_sd)
+    pred = {"tested_hand_force_N": [180.0, 360.0], "tested_initial_temp_C": [100.0, 250.0],
+            "model_error_rel_sd": 0.01, "model_error_floor_rel_sd": 0.004, "model_error_dof": 5,
+            "model_error_edge_high": [0.003, 0.5]}
+
+    def at(force, t0=200.0):
+        f, _ = extrapolation(pred, hand_force_N=force, direction="uphill", initial_temp_C=t0, duration_s=3600.0)
+        return f, measured_factor(pred, f, force)
+    assert at(300.0) == (1.0, 1.0)
+    f, m = at(450.0)                                       # 0.5 of the span beyond: covered by the edge
+    assert f == pytest.approx(1.5) and m == pytest.approx(1.0)
+    f, m = at(540.0)                                       # 1.0 beyond: grows again from 0.5
+    assert f == pytest.approx(2.0) and m == pytest.approx(1.5)
+    assert at(450.0 - 1e-6)[1] == pytest.approx(at(450.0 + 1e-6)[1], abs=1e-6)
+    f, m = at(300.0, 280.0)                                # hotter: no edge covers a temperature distance
+    assert f > 1.0 and m == f
+    f, m = at(100.0)                                       # below the tested forces: no low edge measured
+    assert m == f
+    f, m = at(450.0)
+    sd = model_error_sd(pred, f, 0.0, m)
+    assert sd == pytest.approx(np.sqrt(0.01 ** 2 + 0.004 ** 2 * (UNSEEN ** 2 + 0.25) + 0.001 ** 2))
+    assert sd < model_error_sd(pred, f)
+    eps = model_error_draws(pred, 200_000, f, np.random.default_rng(1), 0.0, m)
+    from scipy import integrate, optimize, stats      # the 95th percentile of s1·T5 + s2·Z, by quadrature
+    s2 = np.sqrt((UNSEEN * 0.004) ** 2 + 0.001 ** 2)       # assumed: Gaussian; the rest Student-t with 5 dof
+    s1 = np.sqrt(sd ** 2 - s2 ** 2)
+    cdf = lambda x: integrate.quad(lambda t: stats.t.pdf(t, 5) * stats.norm.cdf((x - s1 * t) / s2), -np.inf,  # noqa: E731
+                                   np.inf)[0]
+    q95 = optimize.brentq(lambda x: cdf(x) - 0.95, 0.0, 0.1)
+    assert np.percentile(eps, 95) == pytest.approx(q95, rel=0.01)
+    assert q95 < sd * stats.t.ppf(0.95, 5) - 1e-4           # narrower than all of it Student-t
 
 
 def test_a_wrong_model_shows_its_error_and_a_known_misfit_widens_it():

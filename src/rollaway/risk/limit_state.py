@@ -167,7 +167,7 @@ def model_draws(population, n: int, rng: np.random.Generator) -> dict | None:
     from rollaway.uncertainty.direction import mixture_parts, untested_direction
     from rollaway.uncertainty.draws import draw_values, own_record, torque_level_ratio, zero_torque_force
     from rollaway.physics.drum import direction_sign
-    from rollaway.uncertainty.predictive import edge_sd, extrapolation, model_error_draws
+    from rollaway.uncertainty.predictive import edge_sd, extrapolation, measured_factor, model_error_draws
 
     model = population.model
     pred = model.predictive
@@ -207,8 +207,8 @@ def model_draws(population, n: int, rng: np.random.Generator) -> dict | None:
     eps = np.empty(n)
     for k, (_, m) in enumerate(parts):     # each effect set errs by its own held-out record (and force extrapolation)
         own = own_record(pred, m)
-        eps[owner == k] = model_error_draws(own, int(np.sum(owner == k)), factor, rng,
-                                            edge_sd(own, force, f0, level))
+        eps[owner == k] = model_error_draws(own, int(np.sum(owner == k)), factor, rng, edge_sd(own, force, f0, level),
+                                            measured_factor(own, factor, force, f0, level))
     out = {"groups": groups, "effects": effects, "eps": eps}
     if len(pred.get("tested_directions") or ()) == 1:     # the untested direction's friction coefficient (_carried)
         out["friction_z"] = rng.standard_normal(n)

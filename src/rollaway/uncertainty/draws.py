@@ -204,7 +204,8 @@ def rollaway_risk(model: DrumModel, *, hand_force_N: float, grade_pct: float, di
     """
     from rollaway.hold import _effective, required_torque, tyre_adhesion_margin
     from rollaway.hold.numeric import Subset, first_slip_time
-    from rollaway.uncertainty.predictive import edge_sd, extrapolation, model_error_draws, model_error_sd
+    from rollaway.uncertainty.predictive import (edge_sd, extrapolation, measured_factor, model_error_draws,
+                                                 model_error_sd)
 
     if not (isinstance(draws, (int, np.integer)) and 1 <= draws <= 1_000_000):
         raise UserError(f"--uncertainty {draws} must be a whole number of draws from 1 to 1000000, e.g. 1000")
@@ -229,7 +230,8 @@ def rollaway_risk(model: DrumModel, *, hand_force_N: float, grade_pct: float, di
     for k, (_, m) in enumerate(parts):       # each effect set errs by its own held-out record
         own = own_record(pred, m)
         eps[owner == k] = model_error_draws(own, int(counts[k]), factor, rng,
-                                            edge if own is pred else edge_sd(own, float(hand_force_N), f0, level))
+                                            edge if own is pred else edge_sd(own, float(hand_force_N), f0, level),
+                                            measured_factor(own, factor, float(hand_force_N), f0, level))
     brake = np.empty(draws)
     t_slip = np.full(draws, np.nan)
     vals0 = {}
@@ -266,7 +268,8 @@ def rollaway_risk(model: DrumModel, *, hand_force_N: float, grade_pct: float, di
     shares = {"parameters": min(v_par / total, 1.0), "choice_of_effects": max(v_mix - v_par, 0.0) / total,
               "model_error": max(v_all - v_mix, 0.0) / total} if v_all > 0 else {}
     detail = {"shares": shares, "flags": flags, "extrapolation_factor": factor,
-              "model_error_rel_sd": model_error_sd(pred, factor, edge),
+              "model_error_rel_sd": model_error_sd(pred, factor, edge,
+                                                   measured_factor(pred, factor, float(hand_force_N), f0, level)),
               "models": [{"name": m.name, "weight": float(w), "draws": int(c)} for (w, m), c in zip(parts, counts)],
               "half_width": _half_width(least), "carried_over": bool(carried_over(model, sign))}
     main = owner == 0

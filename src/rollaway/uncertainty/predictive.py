@@ -94,10 +94,28 @@ def edge_sd(pred: dict, hand_force_N: float, zero_torque_force_N: float | None =
     return float(edge[0]) * max(r, r * r)
 
 
-def model_error_sd(pred: dict, factor: float, edge: float = 0.0) -> float:
+def measured_factor(pred: dict, factor: float, hand_force_N: float, zero_torque_force_N: float | None = None,
+                    level_ratio: float | None = None) -> float:
+    """The extrapolation *factor* on the measured model error ``rel_sd`` (:func:`model_error_sd`): less the share of
+    the hand-force distance (:func:`force_distance`) that the bench's own extrapolation in hand force covered — the
+    record's ``model_error_edge_low``/``_high`` measured the error of predicting the edge force from the others at
+    its distance, and :func:`edge_sd` carries that error to the question.  Beyond that distance the factor grows
+    again from there; without an edge record it is *factor*."""
+    rng = pred.get("tested_hand_force_N")
+    if rng is None:
+        return factor
+    dist = force_distance(rng, hand_force_N, zero_torque_force_N, level_ratio)
+    edge = pred.get("model_error_edge_low" if hand_force_N < rng[0] else "model_error_edge_high")
+    if dist <= 0.0 or not edge or edge[1] <= 0.0:
+        return factor
+    return max(factor - min(dist, float(edge[1])), 1.0)
+
+
+def model_error_sd(pred: dict, factor: float, edge: float = 0.0, measured: float | None = None) -> float:
     """The relative torque error's scale for a question with extrapolation *factor* (see :func:`model_error_draws`):
-    √((rel_sd·factor)² + floor_rel_sd²·(UNSEEN² + (factor − 1)²)), and at least *edge* (:func:`edge_sd`: the
-    error the bench showed when it extrapolated in hand force, at the question's distance).
+    √((rel_sd·measured)² + floor_rel_sd²·(UNSEEN² + (factor − 1)²)), and at least *edge* (:func:`edge_sd`: the
+    error the bench showed when it extrapolated in hand force, at the question's distance); *measured*
+    (:func:`measured_factor`) is *factor* unless the bench's own extrapolation in hand force covered part of it.
 
     The measured error (``rel_sd``) grows with the distance from the tested range.  An error the data could not
     see — below ``floor_rel_sd``, the noise's resolution of one test's held-out error — is counted too: a share
@@ -108,21 +126,23 @@ def model_error_sd(pred: dict, factor: float, edge: float = 0.0) -> float:
     sd = float(pred.get("model_error_rel_sd", 0.0))
     floor = float(pred.get("model_error_floor_rel_sd", 0.0))
     gain = TRANSDUCER_REL_SD if "model_error_rel_sd" in pred else 0.0
-    return max(float(np.sqrt((sd * factor) ** 2 + floor ** 2 * (UNSEEN ** 2 + max(factor - 1.0, 0.0) ** 2)
-                             + gain ** 2)), float(edge))
+    grown = sd * (factor if measured is None else measured)
+    return max(float(np.sqrt(grown ** 2 + floor ** 2 * (UNSEEN ** 2 + max(factor - 1.0, 0.0) ** 2) + gain ** 2)),
+               float(edge))
 
 
-def model_error_draws(pred: dict, n: int, factor: float, rng: np.random.Generator, edge: float = 0.0) -> np.ndarray:
+def model_error_draws(pred: dict, n: int, factor: float, rng: np.random.Generator, edge: float = 0.0,
+                      measured: float | None = None) -> np.ndarray:
     """n multiplicative torque errors ε (torque × (1 + ε)) of scale :func:`model_error_sd` (widened beyond the
-    tested range by *factor*, at least *edge*).
+    tested range by *factor*, at least *edge*; *measured*: :func:`measured_factor`).
 
-    What is measured or extrapolated — ``rel_sd``·factor, the floor's growth with the distance beyond the tested
+    What is measured or extrapolated — ``rel_sd``·measured, the floor's growth with the distance beyond the tested
     range, or *edge* where that decides — is Student-t with the record's dof: a scale estimated from a handful of
     held-out tests, and stretched beyond them.  The share of the floor counted at every question
     (:data:`UNSEEN`) and the transducer's gain are assumed magnitudes, not estimates: Gaussian, independent of
     the rest.  (The Student-t on the growth keeps the 135 N questions, where the torque nearly vanishes, covered;
     a Student-t on the unseen share too widened every question inside the tested range for no measured miss.)"""
-    sd = model_error_sd(pred, factor, edge)
+    sd = model_error_sd(pred, factor, edge, measured)
     if sd <= 0.0:
         return np.zeros(n)
     dof = max(int(pred.get("model_error_dof", 1)), 1)
@@ -136,5 +156,5 @@ def model_error_draws(pred: dict, n: int, factor: float, rng: np.random.Generato
     return np.clip(eps, -0.9, 9.0)       # a torque never changes sign through its model error
 
 
-__all__ = ["edge_sd", "extrapolation", "force_distance", "model_error_draws", "model_error_sd", "record",
-           "validate"]
+__all__ = ["edge_sd", "extrapolation", "force_distance", "measured_factor", "model_error_draws", "model_error_sd",
+           "record", "validate"]
