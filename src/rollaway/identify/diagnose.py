@@ -34,7 +34,7 @@ from rollaway.identify.drum import calibrate_drum, free_needed, predictive_covar
 from rollaway.identify.diagnosis import Diagnosis
 from rollaway.identify.form import loose_shape, partial_form
 from rollaway.identify.fitting import single_blas_thread
-from rollaway.identify.lookahead import runner_up_path
+from rollaway.identify.lookahead import PAIR_BIC, pair_path, reformed_alone, runner_up_path
 from rollaway.identify.memo import memoised
 from rollaway.identify.intervals import covariance_variances, ess_inflation, mixture_variances, restate
 from rollaway.bench.measurements import Measurements
@@ -160,6 +160,17 @@ def diagnose(data: Measurements, params=None, effects=None, *, noise_torque_Nm: 
                       f"{', '.join(n for n in drum.free if n not in base.model.free)} fitted (BIC lower): freed.")
         fits.append(current)      # a clean residual does not stop the search: a second effect the calibrated
                                   # drum partly absorbed must still pass ΔBIC < −10 and the held-out test
+    pair_first = not chosen and base_struct["structured"] and max_effects >= 2
+    found = pair_path(data, params, names, base, base_cv) if pair_first else None
+    if found is not None:                    # nothing alone, a pair together (pair_path)
+        fit, cv, base_cv = found
+        chosen, current, fits, known = list(fit.effects), fit, [None, fit], []
+        struct = structure(fit, nq, nt)
+        steps.append({"step": "pair", "effects": list(chosen), "delta_bic": float(fit.bic - base.bic),
+                      "cv_score": cv, "current_cv": base_cv})
+        ev.append(f"No effect passes alone, but {' + '.join(chosen)} together lower BIC by {base.bic - fit.bic:.1f} "
+                  f"(a pair needs {-PAIR_BIC:g}) with held-out error {base_cv:.1f} → {cv:.1f} (pair_path): each may "
+                  f"have pulled the free drum against the other's signature.  The pair faces the tests of any pair.")
     if len(chosen) >= 2:
         chosen, current, struct, swaps = exchange(data, params, names, chosen, current, struct, nq, nt,
                                                   known=known)
@@ -176,6 +187,10 @@ def diagnose(data: Measurements, params=None, effects=None, *, noise_torque_Nm: 
         chosen, current, struct, fits = own_evidence(data, params, chosen, current, struct, fits, nq, nt, steps, ev,
                                                      drum.held(), names, drum.departures())
         partner = next((e for e in pair if e not in chosen), None) if len(chosen) == 1 and pair_clean else None
+        if found is not None and len(chosen) == 1 and not reformed_alone(data, params, chosen[0], base, base_cv):
+            ev.append(f"{chosen[0]}, left of the pair, has no evidence of its own: even re-formed it does not clear "
+                      f"the selection's bar against the drum alone: not named.")
+            chosen, current, struct, fits, partner = [], base, base_struct, [], None
     if partner or (len(chosen) >= 2 and struct["structured"]):
         # a partner that cleared the residual, or structure left by two effects each with evidence of its own, may
         # stand in for a brake parameter the bare drum held as not needed, or could not identify where the partner

@@ -12,13 +12,17 @@ a pair (exchange, elimination, its own evidence: :mod:`rollaway.identify.partner
 """
 from __future__ import annotations
 
-from rollaway.identify.selection import BIC_THRESHOLD, cv_score, forward_step, per_test_signature
+import itertools
+
+from rollaway.identify.selection import BIC_THRESHOLD, cv_score, forward_step, has_per_test, per_test_signature
 
 LOOKAHEAD_BIC = 20.0         # [assumed] step-1 runners-up within this BIC of the best are given a second step: twice
                              # the selection's bar, the most a missed second effect was measured to shift the first
                              # step's order (two-effect held-out campaigns: friction ahead of a true modulus law by
                              # 11.4 beside a missed creep)
 LOOKAHEAD_TOP = 1            # at most this many runners-up are given a second step
+PAIR_BIC = 2.0 * BIC_THRESHOLD   # a pair with no single step behind it clears the selection's bar once per effect
+PAIR_TOP = 3                 # the pairs of lowest BIC whose held-out error is computed
 
 
 def runners_up(first_cands: list, first: str, base_cv, params) -> list:
@@ -60,4 +64,56 @@ def runner_up_path(data, params, names, first_cands: list, base_cv, chosen: list
     return None
 
 
-__all__ = ["LOOKAHEAD_BIC", "LOOKAHEAD_TOP", "runner_up_path", "runners_up"]
+def pair_path(data, params, names, base, base_cv):
+    """Where no single effect passes the first step although the calibrated drum *base* leaves structure: every pair
+    of *names* (none with values per test) fitted at once with the brake parameters of *params*.  Two effects whose
+    signatures pull the free drum opposite ways (a creep that lowers the torque with time beside a modulus law that
+    raises it as the drum cools) can each leave the drum's BIC almost unchanged alone, and together explain the data
+    — a beam as wide as the catalogue at the first step, taken only where the greedy path found nothing.  The pair
+    with the lowest BIC among the :data:`PAIR_TOP` lowest is returned when it lowers BIC below *base*'s by more than
+    :data:`PAIR_BIC` and predicts held-out tests better than the drum alone (error *base_cv*, computed where None),
+    by a paired log-score difference beyond :data:`~rollaway.identify.ambiguity.HELDOUT_SE` standard errors (a pair
+    with no step behind it must be preferred, not merely not ruled out): (its fit, its held-out error, *base_cv*),
+    else None.  It then faces every later test of a pair (exchange, elimination, its
+    own evidence: :mod:`rollaway.identify.partner`)."""
+    from rollaway.identify.workers import fit_all
+    singles = [n for n in names if not has_per_test(n)]
+    pairs = list(itertools.combinations(singles, 2))
+    if not pairs or base.jacobian is None:
+        return None
+    fits = fit_all(data, [(list(p), params, dict(start=base.values)) for p in pairs])
+    ranked = sorted((f for f in fits if f.jacobian is not None and f.bic - base.bic < PAIR_BIC), key=lambda f: f.bic)
+    if not ranked:
+        return None
+    if base_cv is None:
+        base_cv = float(cv_score(data, [], params, base).sum())
+    from rollaway.identify.ambiguity import HELDOUT_SE, heldout_difference
+    for f in ranked[:PAIR_TOP]:
+        cv = float(cv_score(data, list(f.effects), params, f).sum())
+        elpd, se = heldout_difference(base, f)
+        if cv < base_cv and elpd > HELDOUT_SE * se:
+            return f, cv, base_cv
+    return None
+
+
+def reformed_alone(data, params, name: str, base, base_cv) -> bool:
+    """True when effect *name* re-formed (its hook as a linear spline of its covariate, no functional form:
+    :func:`rollaway.identify.shape.flexible_effect`) lowers BIC below the calibrated drum *base*'s by more than the
+    selection's bar and predicts held-out tests better (error below *base_cv*): the evidence of its own that the one
+    effect left of a :func:`pair_path` pair needs — its catalogue form did not pass the first step alone."""
+    from rollaway.effects import get_effect
+    from rollaway.identify.calibrate import calibrate
+    from rollaway.identify.shape import covariate_of, flexible_effect, shape_hook
+    eff = get_effect(name)
+    found = shape_hook(eff)
+    flex = None if found is None else flexible_effect(eff, covariate_of(base, found[1]))
+    if flex is None:
+        return False
+    fit = calibrate(data, [flex], params, start=base.values)
+    if fit.jacobian is None or fit.bic - base.bic >= BIC_THRESHOLD:
+        return False
+    return float(cv_score(data, [flex], params, fit).sum()) < base_cv
+
+
+__all__ = ["LOOKAHEAD_BIC", "LOOKAHEAD_TOP", "PAIR_BIC", "PAIR_TOP", "pair_path", "reformed_alone", "runner_up_path",
+           "runners_up"]
