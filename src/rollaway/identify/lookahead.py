@@ -14,7 +14,10 @@ from __future__ import annotations
 
 import itertools
 
-from rollaway.identify.selection import BIC_THRESHOLD, cv_score, forward_step, has_per_test, per_test_signature
+import numpy as np
+
+from rollaway.identify.selection import (BIC_THRESHOLD, SCREEN_ITERATIONS, cv_score, forward_step, has_per_test,
+                                         per_test_signature)
 
 LOOKAHEAD_BIC = 20.0         # [assumed] step-1 runners-up within this BIC of the best are given a second step: twice
                              # the selection's bar, the most a missed second effect was measured to shift the first
@@ -69,8 +72,9 @@ def pair_path(data, params, names, base, base_cv):
     of *names* (none with values per test) fitted at once with the brake parameters of *params*.  Two effects whose
     signatures pull the free drum opposite ways (a creep that lowers the torque with time beside a modulus law that
     raises it as the drum cools) can each leave the drum's BIC almost unchanged alone, and together explain the data
-    — a beam as wide as the catalogue at the first step, taken only where the greedy path found nothing.  The pair
-    with the lowest BIC among the :data:`PAIR_TOP` lowest is returned when it lowers BIC below *base*'s by more than
+    — a beam as wide as the catalogue at the first step, taken only where the greedy path found nothing.  Every pair
+    is screened (:data:`~rollaway.identify.selection.SCREEN_ITERATIONS`), the :data:`PAIR_TOP` lowest in BIC are
+    refitted to convergence, and the first of them in BIC is returned when it lowers BIC below *base*'s by more than
     :data:`PAIR_BIC` and predicts held-out tests better than the drum alone (error *base_cv*, computed where None),
     by a paired log-score difference beyond :data:`~rollaway.identify.ambiguity.HELDOUT_SE` standard errors (a pair
     with no step behind it must be preferred, not merely not ruled out): (its fit, its held-out error, *base_cv*),
@@ -81,7 +85,10 @@ def pair_path(data, params, names, base, base_cv):
     pairs = list(itertools.combinations(singles, 2))
     if not pairs or base.jacobian is None:
         return None
-    fits = fit_all(data, [(list(p), params, dict(start=base.values)) for p in pairs])
+    screened = fit_all(data, [(list(p), params, dict(start=base.values, max_iterations=SCREEN_ITERATIONS))
+                              for p in pairs])                       # a ranking fit each, then the best converged
+    top = sorted((f for f in screened if np.isfinite(f.bic)), key=lambda f: f.bic)[:PAIR_TOP]
+    fits = fit_all(data, [(list(f.effects), params, dict(start=f.values)) for f in top])
     ranked = sorted((f for f in fits if f.jacobian is not None and f.bic - base.bic < PAIR_BIC), key=lambda f: f.bic)
     if not ranked:
         return None
