@@ -17,17 +17,23 @@ from rollaway.effects.shape_free import (  # noqa: F401  (read from here too)
     HOOK_COVARIATE, TEMPERATURE_HOOKS, is_shape_free, shape_hook, spline_effect, spline_factor)
 
 KNOTS = 8                     # spline segments (equal widths over the covariate's range)
+PREDICTING_SEGMENT_SAMPLES = 2   # a shape-free form that competes in the bands (form and channel rivals) has no knot
+                             # segment of one sample: its slope there passes through that sample, between samples
+                             # of other tests, and holding that one test out cannot check it (the selection's
+                             # re-formed first keeps every segment: the more flexible, the harder for a partner)
 COVARIATE_UNITS = {"time_s": "s", "lining_temp_C": "°C", "drum_temp_C": "°C", "hand_force_N": "N"}
 
 
-def spline_knots(x: np.ndarray, covariate: str) -> np.ndarray:
+def spline_knots(x: np.ndarray, covariate: str, least: int = 1) -> np.ndarray:
     """At most KNOTS + 1 knots over the covariate's range: equally spaced, except in time, where they are
     spaced geometrically from the first sample after the start (at least 1 % of the span): creep and
     relaxation change fastest at the start of a hold, and equal 450 s segments of an hour cannot follow a
-    logarithmic loss.  A time knot that would leave a segment without samples is skipped."""
+    logarithmic loss.  A time knot that would leave a segment without samples is skipped.  *least*: a segment of
+    another covariate holding fewer samples is merged with its sparser neighbour (:func:`_filled`)."""
     lo, hi = float(np.min(x)), float(np.max(x))
     if not covariate == "time_s" or hi <= lo:
-        return np.unique(np.linspace(lo, hi, KNOTS + 1))
+        knots = np.unique(np.linspace(lo, hi, KNOTS + 1))
+        return _filled(np.asarray(x, float), knots, least) if least > 1 and knots.size > 3 else knots
     xs = np.unique(x)
     knots = [lo]
     first = max(float(xs[1] - lo) if xs.size > 1 else 0.0, 0.01 * (hi - lo))
@@ -38,22 +44,40 @@ def spline_knots(x: np.ndarray, covariate: str) -> np.ndarray:
     return np.unique(knots)
 
 
-def flexible_effect(effect: Effect, covariate_values: np.ndarray) -> type[Effect] | None:
+def _filled(x: np.ndarray, knots: np.ndarray, least: int) -> np.ndarray:
+    """*knots* less those whose segments hold fewer than *least* samples of *x*: the sparsest segment is merged
+    with its sparser neighbour until every one holds enough, or two segments are left."""
+    knots = list(knots)
+    while len(knots) > 3:
+        counts = np.histogram(x, bins=knots)[0]
+        j = int(np.argmin(counts))
+        if counts[j] >= least:
+            break
+        if j == 0 or (j < len(counts) - 1 and counts[j + 1] <= counts[j - 1]):
+            del knots[j + 1]         # merged with the segment above
+        else:
+            del knots[j]             # merged with the segment below
+    return np.asarray(knots)
+
+
+def flexible_effect(effect: Effect, covariate_values: np.ndarray, least: int = 1) -> type[Effect] | None:
     """*effect*'s shape-free version (:func:`rollaway.effects.shape_free.spline_effect`) with knots over the
-    covariate's values (:func:`spline_knots`); None when it has none or the values span fewer than two segments."""
+    covariate's values (:func:`spline_knots`, *least* samples per segment at least); None when it has none or the
+    values span fewer than two segments."""
     found = shape_hook(effect)
     if found is None:
         return None
-    knots = spline_knots(np.asarray(covariate_values, float), found[1])
+    knots = spline_knots(np.asarray(covariate_values, float), found[1], least)
     return spline_effect(effect, knots) if len(knots) >= 3 else None
 
 
-def _form_jobs(fit, params) -> list:
+def _form_jobs(fit, params, least: int = PREDICTING_SEGMENT_SAMPLES) -> list:
     effects = list(fit.model.effects)
     jobs = []
     for k, eff in enumerate(effects):
         found = shape_hook(eff)
-        flex = None if found is None or is_shape_free(eff) else flexible_effect(eff, covariate_of(fit, found[1]))
+        flex = (None if found is None or is_shape_free(eff) else
+                flexible_effect(eff, covariate_of(fit, found[1]), least))
         if flex is not None:
             jobs.append((effects[:k] + [flex] + effects[k + 1:], params, dict(start=fit.values)))
     return jobs
@@ -71,7 +95,7 @@ def _channel_jobs(fit, candidates, params) -> list:
             hook = shape_hook(get_effect(c.effect))
             if c.effect in names or hook is None or hook[1] != found[1] or hook[0] == found[0]:
                 continue
-            cls = flexible_effect(get_effect(c.effect), covariate_of(fit, hook[1]))
+            cls = flexible_effect(get_effect(c.effect), covariate_of(fit, hook[1]), PREDICTING_SEGMENT_SAMPLES)
             if cls is not None:
                 jobs.append((effects[:k] + [cls] + effects[k + 1:], params, dict(start=fit.values)))
     return jobs
@@ -109,7 +133,7 @@ def candidate_shapes(data, candidates, params, nq, nt, top: int = SHAPE_TOP) -> 
     from rollaway.identify.selection import structure
     pool = [c for c in sorted(candidates, key=lambda c: c.delta_bic)
             if c.delta_bic < 0 and c.fit.jacobian is not None][:top]
-    jobs = [(c.effect, job) for c in pool for job in _form_jobs(c.fit, params)]
+    jobs = [(c.effect, job) for c in pool for job in _form_jobs(c.fit, params, 1)]
     from rollaway.identify import memo
     for _, job in jobs:           # a form fitted before (the re-formed first effect) starts from where it ended
         kept = memo.same_model(data, job[0], job[1])
