@@ -136,8 +136,8 @@ def test_the_measured_error_grows_beyond_the_hand_force_extrapolation_the_bench_
     from scipy import integrate, optimize, stats      # the 95th percentile of s1·T5 + s2·Z, by quadrature
     s2 = np.sqrt((UNSEEN * 0.004) ** 2 + 0.001 ** 2)       # assumed: Gaussian; the rest Student-t with 5 dof
     s1 = np.sqrt(sd ** 2 - s2 ** 2)
-    cdf = lambda x: integrate.quad(lambda t: stats.t.pdf(t, 5) * stats.norm.cdf((x - s1 * t) / s2), -np.inf,  # noqa: E731
-                                   np.inf)[0]
+    def cdf(x):
+        return integrate.quad(lambda t: stats.t.pdf(t, 5) * stats.norm.cdf((x - s1 * t) / s2), -np.inf, np.inf)[0]
     q95 = optimize.brentq(lambda x: cdf(x) - 0.95, 0.0, 0.1)
     assert np.percentile(eps, 95) == pytest.approx(q95, rel=0.01)
     assert q95 < sd * stats.t.ppf(0.95, 5) - 1e-4           # narrower than all of it Student-t

@@ -9,6 +9,9 @@ fitted.  :func:`runner_up_path` takes the second step beside the runner-up too �
 taken only where the greedy path stopped at one effect — and returns it where it finds a pair that beats the
 greedy verdict by the selection's own bar on BIC and on held-out tests.  The pair then faces every later test of
 a pair (exchange, elimination, its own evidence: :mod:`rollaway.identify.partner`), like one the greedy path found.
+Where the greedy path found nothing at all although the drum leaves structure, :func:`pair_path` fits every pair at
+once — two effects can each be hidden by the free drum alone and together explain the data — and
+:func:`reformed_alone` asks the one effect a pair's own-evidence test leaves for evidence of its own.
 """
 from __future__ import annotations
 
