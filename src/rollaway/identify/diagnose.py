@@ -47,6 +47,7 @@ from rollaway.identify.shape import (candidate_shapes, channel_alternatives, cha
                                      other_form_rivals, shape_rivals)
 from rollaway.identify.workers import fit_all
 from rollaway.identify.separating_test import tell_apart
+from rollaway.identify.twins import TWINS, twin_rival
 from rollaway.identify.selection import (BIC_THRESHOLD, SCREEN_ITERATIONS, Candidate, cv_score, eliminate, exchange,
                                          folds, forward_step, has_per_test, per_test_signature, structure)
 from rollaway.uncertainty.bands import validity
@@ -282,6 +283,10 @@ def diagnose(data: Measurements, params=None, effects=None, *, noise_torque_Nm: 
         shape, misfit = loose_shape(selected[0], base, refined, loose, ev), "partial"
         channels = channel_rivals(data, refined, first_cands, drum.plan)
     rivalry = _rivals(selected, _same_drum(data, params, base, first_cands), base_cv, validity(full), nq)
+    named = {e for a in rivalry for e in a["effects"]}
+    twin = (twin_rival(data, params, refined, validity(full), nq.sigma, max(ess_inflation(refined).values()))
+            if len(selected) == 1 and not misfit and TWINS.get(selected[0]["effect"]) not in named else None)
+    rivalry = ([twin] + rivalry)[:MAX_RIVALS] if twin else rivalry      # facing one way (rollaway.identify.twins)
     if (len(selected) == 1 and (selected[0]["form"] == "exact" or loose is not None) and not remaining
             and len(rivalry) < MAX_RIVALS):
         own = next((f for f in forms if len(f.effects) == 1), None)
