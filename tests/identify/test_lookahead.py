@@ -66,8 +66,8 @@ def test_a_pair_no_single_effect_reveals_is_found_together_and_named_on_its_own_
     """An exponential lining creep beside a modulus law (linear in 215, a glass-transition drop in 287 and 353):
     alone, no effect passes the first step (on BIC and the held-out test) — each pulls the free drum against the
     other's signature — and the greedy path ends at "none".  Fitted together the pair lowers BIC by far more than a
-    pair's bar and predicts held-out tests better beyond two standard errors; it then passes the tests of any pair (its own evidence), and both true
-    effects are named.  Without the pair step, neither is."""
+    pair's bar and predicts held-out tests better beyond two standard errors; it then passes the tests of any pair
+    (its own evidence), and both true effects are named.  Without the pair step, neither is."""
     effects, *_, data, _rng = two_effect_data(i)
     assert sorted(map(str, effects)) in (["creep_exponential", "modulus_linear"],
                                          ["creep_exponential", "modulus_sigmoid"])

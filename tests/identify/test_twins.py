@@ -30,4 +30,4 @@ def test_no_twin_where_the_arm_ratio_was_tested_or_free_or_the_verdict_is_anothe
     assert twin_rival(None, SimpleNamespace(free=("mu_drum", ARM), params=None), fit, one, 8.0) is None
     other = SimpleNamespace(effects=["lining_creep"], jacobian=[[1.0]], values={})
     assert twin_rival(None, held, other, one, 8.0) is None
-    assert TWINS["friction_temperature"] == "modulus_temperature" and TWINS["modulus_temperature"] == "friction_temperature"
+    assert TWINS == {"friction_temperature": "modulus_temperature", "modulus_temperature": "friction_temperature"}

@@ -1,8 +1,8 @@
 """A friction law and a lining-modulus law on tests facing one way, compared with the shoe arm ratio free.
 
 μ and E_l enter the torque together (eq. 17b: μ_d·r_d·A·E), and differ only through the self-energising factor
-k(μ, s) = l_f/(l_f − s·μ·l_fr) of eqs. (18)–(21), which a friction law changes with temperature and a modulus law
-does not.  How much k bends with μ depends on the arm ratio l_fr/l_f — which tests facing one way do not test
+k(μ, s) = l_f/(l_f − s·μ·l_fr) of eqs. (18)–(21), which a friction law changes with temperature and a modulus
+law does not.  How much k bends with μ depends on the arm ratio l_fr/l_f — which tests facing one way do not test
 (it shows only in the downhill/uphill ratio), so the drum calibration holds it at the set's value.  Compared at that
 held value, one law can beat the other by more than the selection's bar for a reason the data never saw: held-out
 names campaign 389 (a linear modulus law on two uphill tests, another drum) named friction 13.5 BIC ahead of the
