@@ -68,6 +68,23 @@ def test_a_shape_free_tie_with_the_verdicts_own_shape_is_named_beside_it():
     assert creep >= 5 and missed <= 1, (creep, missed)
 
 
+def test_a_candidate_whose_catalogue_form_scores_worse_than_the_drum_is_still_fitted_shape_free():
+    """Two-effect campaign 194 (a friction fade above a temperature with radiative cooling, one direction, 5-min):
+    the linear friction law scores 2.4 worse than the drum, and shoe_thermal_lag was named with nothing beside it
+    (a wrong name, no doubt).  Shape-free, friction in the lining temperature fits within 2 of the thermal lag's own
+    spline and the held-out tests do not rule it out: it is named beside the verdict."""
+    from tests.uncertainty.band_questions import two_effect_data
+    effects, *_, data, _rng = two_effect_data(194)
+    assert "friction_fade_above" in effects
+    d = diagnose(data)
+    first = next(c for c in d.candidates if c.effect == "friction_temperature")
+    assert first.delta_bic > 0
+    if d.verdict == "friction_temperature":
+        return
+    alt = next(a for a in d.alternatives if a["effects"] == ["friction_temperature"])
+    assert alt["form"] == "shape-free" and "tell_apart" in alt
+
+
 def test_channel_rivals_put_another_quantity_with_the_same_covariate_in_a_shape_free_form():
     """Beside a friction falling with the lining temperature, a lining modulus (the same covariate, another
     quantity) that lowered BIC is refitted shape-free in its place; an effect of another covariate (creep in time),
