@@ -71,8 +71,9 @@ def test_a_shape_free_tie_with_the_verdicts_own_shape_is_named_beside_it():
 def test_a_candidate_whose_catalogue_form_scores_worse_than_the_drum_is_still_fitted_shape_free():
     """Two-effect campaign 194 (a friction fade above a temperature with radiative cooling, one direction, 5-min):
     the linear friction law scores 2.4 worse than the drum, and shoe_thermal_lag was named with nothing beside it
-    (a wrong name, no doubt).  Shape-free, friction in the lining temperature fits within 2 of the thermal lag's own
-    spline and the held-out tests do not rule it out: it is named beside the verdict."""
+    (a wrong name, no doubt).  Shape-free, friction in the lining temperature fits better than the thermal lag's own
+    spline and within 2.3 of its catalogue form, and the held-out tests do not rule it out: it is named beside the
+    verdict."""
     from tests.uncertainty.band_questions import two_effect_data
     effects, *_, data, _rng = two_effect_data(194)
     assert "friction_fade_above" in effects

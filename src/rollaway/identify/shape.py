@@ -176,36 +176,47 @@ def other_form_rivals(data, fit, own_shape, candidates, params) -> list[dict]:
     """Effects that a one-effect verdict *fit* (its catalogue form explains the data) does not rule out once their
     form is freed too: a step-1 candidate whose physics the catalogue writes in a form the data do not follow (a
     friction rising with the square of the temperature, written linear) can lose to another effect in its
-    catalogue form and still be the better explanation.  Each step-1 candidate, whatever its catalogue form scored
-    against the drum (a friction that fades above a temperature, written linear, scores worse than the drum it
-    contains: measured on two-effect campaign 194 of ``tests/uncertainty/band_questions.py``, +2.4, while its spline
-    fits within 2.2 of the shoe thermal lag named), whose shape-free form has another covariate than the verdict's
-    (a function of temperature against one of time: two functions of time are the same shape, a test of physics they are not) is fitted shape-free
-    (:func:`flexible_effect`, brake parameters of *params*) and compared, freedom for freedom, with the verdict's
-    own shape-free form *own_shape*: it is not ruled out when its BIC is no more than :data:`OTHER_FORM_BIC` above
-    that form's (lower, or a tie: where time and temperature fall together, a function of either fits, and the
-    verdict's catalogue form fitting only says the catalogue wrote that one well) and the held-out prediction does
-    not prefer the verdict's shape-free form (:func:`rollaway.identify.ambiguity.not_ruled_out`).  Best first:
-    ``{"kind": "rival", "form": "shape-free", "effects", "delta_bic" (against *fit*), "heldout_elpd",
-    "heldout_se" (against *fit*), "why", "fit"}`` (*fit* the shape-free one)."""
+    catalogue form and still be the better explanation.  Each step-1 candidate whose shape-free form has another
+    covariate than the verdict's (a function of temperature against one of time: two functions of time are the
+    same shape, a test of physics they are not) is fitted shape-free (:func:`flexible_effect`, no knot segment of
+    fewer than :data:`PREDICTING_SEGMENT_SAMPLES` samples, as the verdict's own, since it competes in the bands;
+    brake parameters of *params*), whatever its catalogue form scored against the drum (a friction that fades above
+    a temperature, written linear, scored +2.4 on two-effect campaign 194 of
+    ``tests/uncertainty/band_questions.py`` while its spline fits within 2.3 of the shoe thermal lag named).  It is
+    not ruled out when its BIC is
+    - no more than :data:`OTHER_FORM_BIC` above that of the verdict's own shape-free form *own_shape* (freedom for
+      freedom; lower, or a tie: where time and temperature fall together, a function of either fits, and the
+      verdict's catalogue form fitting only says the catalogue wrote that one well),
+    - less than the selection's bar (10, "very strong") above the verdict's catalogue form *fit*, the difference
+      divided by *fit*'s residual variance inflation as :func:`~rollaway.identify.ambiguity.rivals` does (a spline
+      the verdict's form beats that clearly is ruled out by it, however poorly the verdict's own spline bends: a
+      radiating drum's law written as a spline in time lost to a spline in hand force, 57–190 behind the law),
+    and the held-out prediction does not prefer the verdict's shape-free form
+    (:func:`rollaway.identify.ambiguity.not_ruled_out`).  Best first: ``{"kind": "rival", "form": "shape-free",
+    "effects", "delta_bic" (against *fit*), "heldout_elpd", "heldout_se" (against *fit*), "why", "fit"}`` (*fit*
+    the shape-free one)."""
     from rollaway.identify.ambiguity import heldout_difference, not_ruled_out
+    from rollaway.identify.intervals import ess_inflation
+    from rollaway.identify.selection import BIC_THRESHOLD
     from rollaway.identify.workers import fit_all
     found = shape_hook(fit.model.effects[0])
     if own_shape is None or own_shape.jacobian is None or found is None:
         return []
     verdict = fit.effects[0]
+    inflation = max(1.0, *ess_inflation(fit).values())
     flex = []
     for c in candidates:
         eff = get_effect(c.effect)
         other = shape_hook(eff)
         if c.effect != verdict and other is not None and other[1] != found[1]:
-            cls = flexible_effect(eff, covariate_of(fit, other[1]))
+            cls = flexible_effect(eff, covariate_of(fit, other[1]), PREDICTING_SEGMENT_SAMPLES)
             if cls is not None:
                 flex.append((c.effect, cls))
     out = []
     shapes = fit_all(data, [([cls], params, dict(start=fit.values)) for _, cls in flex])
     for (name, cls), shaped in zip(flex, shapes):
-        if shaped.jacobian is None or shaped.bic > own_shape.bic + OTHER_FORM_BIC or not not_ruled_out(own_shape, shaped):
+        if (shaped.jacobian is None or shaped.bic > own_shape.bic + OTHER_FORM_BIC
+                or (shaped.bic - fit.bic) / inflation >= -BIC_THRESHOLD or not not_ruled_out(own_shape, shaped)):
             continue
         elpd, se = heldout_difference(fit, shaped)
         out.append({"kind": "rival", "form": "shape-free", "effects": [name], "delta_bic": float(shaped.bic - fit.bic),
