@@ -266,12 +266,13 @@ def test_the_chosen_effect_in_the_datas_own_form_competes_in_the_bands(monkeypat
 def test_a_rival_the_data_cannot_tell_from_the_verdict_keeps_its_bic_weight_in_the_bands():
     """A lining modulus falling with temperature, tested downhill only (campaign 41 of band_questions): friction and
     modulus have the same BIC (+0.1) and a held-out difference inside the preference margin (−4.0 ± 2.3 over 4
-    tests); the Bayesian bootstrap of those 4 scores gave modulus 5 % of the mixture, its BIC weight is ~½."""
+    tests); the Bayesian bootstrap of those 4 scores gave modulus 5 % of the mixture, its BIC weight is ~½.  (Facing
+    one way, time and temperature fall together: a lining creep spline, 10 behind the verdict, may stand second.)"""
     from tests.uncertainty.band_questions import campaign_data
     hidden, *_, data, _ = campaign_data(41)
     d = diagnose(data)
     assert hidden == "modulus_linear" and d.verdict == "friction_temperature"
-    assert [a["effects"] for a in d.alternatives] == [["modulus_temperature"]]
+    assert [a["effects"] for a in d.alternatives][0] == ["modulus_temperature"], d.alternatives
     weights = {m.name: w for w, m in d.model.alternatives}
     assert weights.get("paper + modulus_temperature", 0.0) >= 0.25, weights
 
