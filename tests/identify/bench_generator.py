@@ -91,6 +91,20 @@ OTHER_DRUMS = {
                      "ambient_C": 21.0},
 }
 
+# More drums, first used after every calibration and band rule was written (held out from that work): a wider and
+# heavier drum with more lining, longer shoe arms, a shorter friction arm (a weaker self-energising ratio), a thin
+# stiff lining, an eq. (24) law that bears later, and a light drum with every departure at once.
+MORE_DRUMS = {
+    "wide_drum": {"drum_radius_m": 0.115, "drum_volume_m3": 1.1e-3, "lining_area_m2": 0.0062},
+    "long_arms": {"shoe_arm_normal_m": 0.09, "shoe_arm_friction_m": 0.065},
+    "short_friction_arm": {"shoe_arm_friction_m": 0.05},
+    "thin_stiff_lining": {"lining_thickness_m": 0.0035, "lining_modulus_Pa": 3.0e8},
+    "eq24_late": {"u6_slope": 3.4e-7, "u6_offset": -3.2e-5},
+    "light_mixed": {"drum_radius_m": 0.085, "drum_volume_m3": 6.5e-4, "shoe_arm_normal_m": 0.065,
+                    "shoe_arm_friction_m": 0.058, "lining_thickness_m": 0.0045, "lining_modulus_Pa": 1.9e8,
+                    "ambient_C": 12.0},
+}
+
 
 def truth_parameters(drum: dict | None = None):
     """The paper's set with *drum*'s departures (Table 1 names); eq. (24) and ambient returned apart."""

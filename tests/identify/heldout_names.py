@@ -4,6 +4,7 @@ one direction in every third campaign.  Counts whether the truth is the verdict 
 alternatives, partner effects (a second effect named where one is hidden), structure and time.
 
     PYTHONPATH=src python -m tests.identify.heldout_names --sets 60
+    PYTHONPATH=src python -m tests.identify.heldout_names --sets 72 --rotated    # every kind in every setting
 """
 from __future__ import annotations
 
@@ -12,7 +13,7 @@ import time
 
 import numpy as np
 
-from tests.identify.bench_generator import EFFECTS, OTHER_DRUMS, generate
+from tests.identify.bench_generator import EFFECTS, MORE_DRUMS, OTHER_DRUMS, generate
 
 HIDDEN = [None] + [n for n, (k, _) in EFFECTS.items() if k in ("exact", "other") and n != "zero_offset"]
 EQUIVALENT = {"gap": {"none", "drum_radial_contraction"}}     # a gap is a thicker lining (eq. 16b)
@@ -32,6 +33,24 @@ def campaign(i: int):
     return hidden, data
 
 
+def rotated_campaign(i: int):
+    """(hidden effect or None, data) of :func:`campaign` where every hidden kind meets every setting: there the kinds
+    repeat every 12 while the sampling turns every 2 and one direction falls on every third campaign, so a kind is
+    only ever sampled one way (the logarithmic cable creep always every 5 minutes, one direction).  Here the
+    setting turns once per round of kinds (1- and 5-min alternating, one direction in every third round), and the
+    drums come from ``OTHER_DRUMS`` and ``MORE_DRUMS`` too (seeds 8100 + i)."""
+    rng = np.random.default_rng(8100 + i)
+    hidden, rnd = HIDDEN[i % len(HIDDEN)], i // len(HIDDEN)
+    drums = [{}] + list(OTHER_DRUMS.values()) + list(MORE_DRUMS.values())
+    drum = drums[rng.integers(len(drums))]
+    lo = rng.uniform(150.0, 220.0)
+    forces = np.linspace(lo, lo + rng.uniform(120.0, 200.0), int(rng.integers(2, 5)))
+    kw = {"directions": (("downhill",), ("uphill",))[(rnd // 3) % 2]} if rnd % 3 == 2 else {}
+    data = generate([hidden] if hidden else [], sampling=("1min", "5min")[rnd % 2], seed=8100 + i, drum=drum,
+                    mu=rng.uniform(0.3, 0.45), h=rng.uniform(25.0, 45.0), forces=forces, **kw)
+    return hidden, data
+
+
 def judge(hidden, d) -> dict:
     """Right (verdict or a flagged alternative), partner named, structure, of one diagnosis."""
     expect = {"none"} if hidden is None else ({EFFECTS[hidden][1]} | EQUIVALENT.get(hidden, set()))
@@ -42,11 +61,11 @@ def judge(hidden, d) -> dict:
             "verdict": d.verdict, "effects": named, "alternatives": sorted(alts)}
 
 
-def run(sets: int, start: int = 0) -> list[dict]:
+def run(sets: int, start: int = 0, rotated: bool = False) -> list[dict]:
     from rollaway.identify.diagnose import diagnose
     rows = []
     for i in range(start, start + sets):
-        hidden, data = campaign(i)
+        hidden, data = (rotated_campaign if rotated else campaign)(i)
         t = time.perf_counter()
         d = diagnose(data)
         rows.append({"i": i, "hidden": hidden, "rows": len(data), "seconds": time.perf_counter() - t,
@@ -67,8 +86,9 @@ def main(argv=None):
     ap = argparse.ArgumentParser(description=__doc__.splitlines()[0])
     ap.add_argument("--sets", type=int, default=60)
     ap.add_argument("--start", type=int, default=0)
+    ap.add_argument("--rotated", action="store_true", help="every hidden kind in every setting (rotated_campaign)")
     a = ap.parse_args(argv)
-    rows = run(a.sets, a.start)
+    rows = run(a.sets, a.start, a.rotated)
     for r in rows:
         if not r["right_or_alternative"] or r["partner"]:
             print(f"  {r['i']}: {r['hidden']} → {r['verdict']} {r['effects']} alt {r['alternatives']} "

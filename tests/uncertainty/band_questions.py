@@ -13,6 +13,7 @@ On each question's grade the truth's least brake margin m* is near 1; the 5–95
 should hold it in ≥ 90 % of the questions.
 
     PYTHONPATH=src python -m tests.uncertainty.band_questions --campaigns 30
+    PYTHONPATH=src python -m tests.uncertainty.band_questions --campaigns 48 --rotated   # every kind, every question
 """
 from __future__ import annotations
 
@@ -21,7 +22,7 @@ import argparse
 import numpy as np
 from scipy.optimize import brentq
 
-from tests.identify.bench_generator import EFFECTS, OTHER_DRUMS, generate, true_torque
+from tests.identify.bench_generator import EFFECTS, MORE_DRUMS, OTHER_DRUMS, generate, true_torque
 
 GRID = np.linspace(0.0, 3600.0, 361)
 HIDDEN = [None] + [k for k, v in EFFECTS.items() if v[0] in ("exact", "other") and k != "zero_offset"]
@@ -43,6 +44,24 @@ def campaign_data(i: int, sampling: str = "5min"):
     return hidden, drum, mu, h, one, data, rng
 
 
+def rotated_campaign_data(i: int, sampling: str = "5min"):
+    """:func:`campaign_data` where every hidden kind meets every setting: in :func:`campaign_data` one direction falls
+    on every third campaign and the kinds repeat every 12, so four kinds (those at places 2, 5, 8 and 11) are only
+    ever tested one way and asked only the untested direction.  Here the setting turns once per round of kinds
+    (one direction in every third round), and half the drums, at random, come from ``OTHER_DRUMS`` and ``MORE_DRUMS``
+    (seeds 4400 + i)."""
+    rng = np.random.default_rng(4400 + i)
+    hidden = HIDDEN[i % len(HIDDEN)]
+    mu, h = rng.uniform(0.3, 0.45), rng.uniform(25.0, 45.0)
+    drums = list(OTHER_DRUMS.values()) + list(MORE_DRUMS.values())
+    drum = drums[rng.integers(len(drums))] if rng.random() < 0.5 else {}      # not by parity: 12 kinds are even
+    one = (i // len(HIDDEN)) % 3 == 2
+    data = generate([hidden] if hidden else [], sampling=sampling, seed=4400 + i, mu=mu, h=h, drum=drum,
+                    directions=("downhill",) if one else ("downhill", "uphill"),
+                    forces=np.linspace(180.0, 360.0, 3 + (i // len(HIDDEN)) % 2), t0_range=(100.0, 250.0))
+    return hidden, drum, mu, h, one, data, rng
+
+
 def two_effect_data(i: int):
     """(hidden effects, drum, μ_d, h, one direction?, bench data, rng) of two-effect campaign *i*: a random pair of
     catalogue and other forms, 5-min and 1-min sampling alternating."""
@@ -58,14 +77,14 @@ def two_effect_data(i: int):
     return effects, drum, mu, h, one, data, rng
 
 
-def campaign(i: int, draws: int = 300, sampling: str = "5min", two: bool = False) -> list[dict]:
-    """The questions of held-out campaign *i* (*two*: of :func:`two_effect_data`), each with the truth's least
-    margin and the model's band."""
+def campaign(i: int, draws: int = 300, sampling: str = "5min", two: bool = False, rotated: bool = False) -> list[dict]:
+    """The questions of held-out campaign *i* (*two*: of :func:`two_effect_data`; *rotated*: of
+    :func:`rotated_campaign_data`), each with the truth's least margin and the model's band."""
     from rollaway.identify.diagnose import diagnose
     if two:
         effects, drum, mu, h, one, data, rng = two_effect_data(i)
     else:
-        hidden, drum, mu, h, one, data, rng = campaign_data(i, sampling)
+        hidden, drum, mu, h, one, data, rng = (rotated_campaign_data if rotated else campaign_data)(i, sampling)
         effects = [hidden] if hidden else []
     return answers(diagnose(data).model, i, effects, drum, mu, h, one, rng, draws)
 
@@ -122,8 +141,10 @@ def main(argv=None):
     ap.add_argument("--sampling", default="5min")
     ap.add_argument("--start", type=int, default=0)
     ap.add_argument("--two", action="store_true", help="two hidden effects a campaign (5-min and 1-min alternating)")
+    ap.add_argument("--rotated", action="store_true", help="every hidden kind in every setting (rotated_campaign_data)")
     a = ap.parse_args(argv)
-    rows = [r for i in range(a.start, a.start + a.campaigns) for r in campaign(i, sampling=a.sampling, two=a.two)]
+    rows = [r for i in range(a.start, a.start + a.campaigns)
+            for r in campaign(i, sampling=a.sampling, two=a.two, rotated=a.rotated)]
     for r in rows:
         if not r["covered"]:
             print(f"  miss {r['campaign']} {r['hidden']} {r['question']}: m* {r['m_star']:.3f} band "
