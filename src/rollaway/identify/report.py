@@ -331,6 +331,9 @@ def diagnosis_report(diag, path) -> None:
                 *[[f"{side} tested force predicted from the others (relative torque, 1σ)",
                    f"{pred[k][0]:.3%} at distance {pred[k][1]:.2f}"]
                   for side in ("lowest", "highest") if (k := f"model_error_edge_{side[:-3]}") in pred],
+                *[["start of each test predicted from the others (relative torque, 1σ)",
+                   f"{st[0]:.3%} over its first {st[1]:g} s, fading by {st[2]:g} s"]
+                  for st in [pred.get("model_error_start")] if st],
                 ["tested hand force [N]", "{:g} – {:g}".format(*pred["tested_hand_force_N"])],
                 ["tested T_0 [°C]", "{:.0f} – {:.0f}".format(*pred["tested_initial_temp_C"])],
                 ["tested hold [s]", f"{pred['tested_duration_s']:g}"],

@@ -10,6 +10,7 @@ draws)::
     model_error_dof = 7                # tests − 1 (the error is drawn from a Student-t)
     model_error_edge_low = [0.004, 0.6]  # [rel_sd, distance]: the lowest tested force predicted from the others
     model_error_edge_high = [0.002, 0.4] # ... and the highest (three or more tested forces)
+    model_error_start = [0.02, 120.0, 300.0]  # [rel_sd, full_s, zero_s]: the error at the start of a hold
     tested_hand_force_N = [190.0, 350.0]
     tested_initial_temp_C = [104.2, 296.0]
     tested_duration_s = 3600.0
@@ -26,7 +27,7 @@ from pathlib import Path
 from rollaway.errors import UserError, suggest
 
 KEYS = ("model_error_rel_sd", "model_error_floor_rel_sd", "model_error_dof", "model_error_tests",
-        "model_error_edge_low", "model_error_edge_high",
+        "model_error_edge_low", "model_error_edge_high", "model_error_start",
         "tested_hand_force_N", "tested_initial_temp_C", "tested_duration_s", "tested_directions", "alternatives")
 
 
@@ -40,6 +41,9 @@ def record(model_error: dict, validity: dict, alternatives=()) -> dict:
            "tested_duration_s": float(validity["duration_s"]), "tested_directions": list(validity["directions"])}
     for side, e in model_error.get("edges", {}).items():
         out[f"model_error_edge_{side}"] = [float(e["rel_sd"]), float(e["distance"])]
+    if model_error.get("start"):
+        st = model_error["start"]
+        out["model_error_start"] = [float(st["rel_sd"]), float(st["full_s"]), float(st["zero_s"])]
     if alternatives:
         out["alternatives"] = [dict(a) for a in alternatives]
     return out
@@ -69,6 +73,11 @@ def validate(table, where: str, base_dir: Path | None = None) -> dict:
                                   and 0 <= v[0] <= 10 and v[1] > 0):
             raise UserError(f"{where}: key 'predictive.{key}' must be [relative error ≥ 0, distance > 0], e.g. "
                             f"[0.004, 0.6]; got {v!r}")
+    v = out.get("model_error_start")
+    if v is not None and not (isinstance(v, list) and len(v) == 3 and all(_real(x) and math.isfinite(x) for x in v)
+                              and 0 <= v[0] <= 10 and 0 <= v[1] <= v[2]):
+        raise UserError(f"{where}: key 'predictive.model_error_start' must be [relative error ≥ 0, full_s ≥ 0, "
+                        f"zero_s ≥ full_s], e.g. [0.02, 120.0, 300.0]; got {v!r}")
     for key in ("tested_hand_force_N", "tested_initial_temp_C"):
         v = out.get(key)
         if v is not None and not (isinstance(v, list) and len(v) == 2 and all(_real(x) and math.isfinite(x) for x in v)

@@ -134,10 +134,12 @@ class Risk:
 
 
 def _least_margins(model: DrumModel, n: int, seed, force_N: float, sign: float, t_req_Nm: np.ndarray,
-                   initial_temp_C, duration_s: float, marginal: bool = False, carry: bool = False):
-    """Parameter draws of *model* (none without a covariance; *marginal*: :func:`draw_values`) and each draw's
-    least brake margin; *carry*: the torque carried over to the untested direction by
-    :func:`untested_direction_factor`."""
+                   initial_temp_C, duration_s: float, marginal: bool = False, carry: bool = False, start=None):
+    """Parameter draws of *model* (none without a covariance; *marginal*: :func:`draw_values`), the margin function,
+    each draw's least brake margin and the factor the start error put on it; *carry*: the torque carried over to
+    the untested direction by :func:`untested_direction_factor`; *start*: (each draw's start error, the record's
+    ``model_error_start``) on the torque at the start of the hold (:class:`rollaway.uncertainty.predictive.
+    StartError`)."""
     from rollaway.hold import validate_hand_force
     from rollaway.hold.numeric import MarginFunction, least_margin
 
@@ -148,7 +150,12 @@ def _least_margins(model: DrumModel, n: int, seed, force_N: float, sign: float, 
     fn = MarginFunction(model, np.full(n, float(validate_hand_force(force_N))), np.full(n, float(sign)),
                         t_req_Nm, mu, None, initial_temp_C, heat_transfer_W_m2K=vals.get("heat_transfer_W_m2K"),
                         values={k: v for k, v in vals.items() if k not in LEGACY_FREE})
-    return vals, fn, least_margin(fn, duration_s)
+    if start is None:
+        return vals, fn, least_margin(fn, duration_s), np.ones(n)
+    from rollaway.uncertainty.predictive import StartError, start_weight
+    fn = StartError(fn, *start)
+    least, when = least_margin(fn, duration_s, return_time=True)
+    return vals, fn, least, 1.0 + fn.extra * start_weight(when, fn.start)    # the start error's share of the least
 
 
 def zero_torque_force(model: DrumModel) -> float | None:
@@ -205,7 +212,7 @@ def rollaway_risk(model: DrumModel, *, hand_force_N: float, grade_pct: float, di
     from rollaway.hold import _effective, required_torque, tyre_adhesion_margin
     from rollaway.hold.numeric import Subset, first_slip_time
     from rollaway.uncertainty.predictive import (edge_sd, extrapolation, measured_factor, model_error_draws,
-                                                 model_error_sd)
+                                                 model_error_sd, start_error_draws)
 
     if not (isinstance(draws, (int, np.integer)) and 1 <= draws <= 1_000_000):
         raise UserError(f"--uncertainty {draws} must be a whole number of draws from 1 to 1000000, e.g. 1000")
@@ -227,21 +234,27 @@ def rollaway_risk(model: DrumModel, *, hand_force_N: float, grade_pct: float, di
     counts[0] += draws - counts.sum()
     owner = np.repeat(np.arange(len(parts)), counts)
     eps = np.empty(draws)
+    starts = []
+    rng_start = np.random.default_rng(None if seed is None else (int(seed), 19))
     for k, (_, m) in enumerate(parts):       # each effect set errs by its own held-out record
         own = own_record(pred, m)
-        eps[owner == k] = model_error_draws(own, int(counts[k]), factor, rng,
-                                            edge if own is pred else edge_sd(own, float(hand_force_N), f0, level),
-                                            measured_factor(own, factor, float(hand_force_N), f0, level))
+        own_edge = edge if own is pred else edge_sd(own, float(hand_force_N), f0, level)
+        own_measured = measured_factor(own, factor, float(hand_force_N), f0, level)
+        eps[owner == k] = model_error_draws(own, int(counts[k]), factor, rng, own_edge, own_measured)
+        extra = start_error_draws(own, int(counts[k]), factor, rng_start, own_edge, own_measured)
+        starts.append(None if extra is None else (extra, own["model_error_start"]))
     brake = np.empty(draws)
+    start_factor = np.ones(draws)
     t_slip = np.full(draws, np.nan)
     vals0 = {}
     for k, ((_, m), c) in enumerate(zip(parts, counts)):
         if c == 0:
             continue
         idx = np.flatnonzero(owner == k)
-        vals, fn, least = _least_margins(m, int(c), None if seed is None else seed + k, hand_force_N, sign,
+        vals, fn, least, start_factor[idx] = _least_margins(m, int(c), None if seed is None else seed + k, hand_force_N, sign,
                                          t_req / (1.0 + eps[idx]), initial_temp_C, duration_s,
-                                         untested_direction(model, direction), bool(carried_over(model, sign)))
+                                         untested_direction(model, direction), bool(carried_over(model, sign)),
+                                         starts[k])
         brake[idx] = least
         if k == 0:
             vals0 = vals
@@ -257,7 +270,7 @@ def rollaway_risk(model: DrumModel, *, hand_force_N: float, grade_pct: float, di
     tp = {f"p{q:g}": (lambda x: None if not np.isfinite(x) else float(x))(np.percentile(t_inf, q,
                                                                                       method="inverted_cdf"))
           for q in PERCENTILES}
-    no_eps = brake / (1.0 + eps)                  # the margin scales with the torque: ε divides out exactly
+    no_eps = brake / (1.0 + eps) / start_factor   # the margin scales with the torque: ε divides out exactly
     # law of total variance over the effect sets: within (parameters) + between (choice of effects); none where a
     # margin is infinite (no torque required: a level road)
     groups = [no_eps[owner == k] for k in range(len(parts)) if counts[k] > 0]
@@ -280,14 +293,15 @@ def rollaway_risk(model: DrumModel, *, hand_force_N: float, grade_pct: float, di
 def least_force_band(model: DrumModel, grades_pct, direction: str, occupants: int, duration_s: float,
                      initial_temp_C: float | None = None, draws: int = 100, seed: int | None = 0) -> dict:
     """5/50/95 percentiles of the least hand force that holds [N] at each grade, over predictive draws
-    (parameters, competing effect sets, model error — as :func:`rollaway_risk`); NaN where the rear tyres
-    slide or no force holds."""
+    (parameters, competing effect sets, model error and the start's — as :func:`rollaway_risk`); NaN where the
+    rear tyres slide or no force holds."""
     from rollaway.hold import _effective, required_torque, tyre_adhesion_margin
     from rollaway.hold.numeric import MarginFunction, least_hand_force
-    from rollaway.uncertainty.predictive import extrapolation, model_error_draws
+    from rollaway.uncertainty.predictive import StartError, extrapolation, model_error_draws, start_error_draws
 
     grades = np.atleast_1d(np.asarray(grades_pct, float))
     rng = np.random.default_rng(seed)
+    rng_start = np.random.default_rng(None if seed is None else (int(seed), 19))
     t0 = model.params.initial_drum_temp_C if initial_temp_C is None else float(initial_temp_C)
     factor, _ = extrapolation(model.predictive, hand_force_N=float(np.mean(model.predictive.get(
         "tested_hand_force_N", [250.0, 250.0]))), direction=direction, initial_temp_C=t0, duration_s=duration_s)
@@ -300,7 +314,9 @@ def least_force_band(model: DrumModel, grades_pct, direction: str, occupants: in
             continue
         vals = draw_values(m, int(c), None if seed is None else seed + k, untested_direction(model, direction)) \
             if m.covariance is not None else {}
-        eps = model_error_draws(own_record(model.predictive, m), int(c), factor, rng)
+        own = own_record(model.predictive, m)
+        eps = model_error_draws(own, int(c), factor, rng)
+        extra = start_error_draws(own, int(c), factor, rng_start)
         g, sign = _effective(grades, direction)
         t_req = np.asarray(required_torque(m.params, g, occupants), float)
         carry = carried_over(model, np.broadcast_to(sign, grades.shape))
@@ -315,6 +331,8 @@ def least_force_band(model: DrumModel, grades_pct, direction: str, occupants: in
                             (np.broadcast_to(t_req, (c, grades.size)) / (1.0 + eps[:, None])).ravel(), mu, None,
                             t0, heat_transfer_W_m2K=h,
                             values={n: rep(v) for n, v in vals.items() if n not in LEGACY_FREE})
+        if extra is not None:                  # the start of the hold errs by the record's start error too
+            fn = StartError(fn, rep(extra), own["model_error_start"])
         forces.append(least_hand_force(fn, duration_s).reshape(c, grades.size))
     f = np.concatenate(forces, axis=0)
     f = np.where(np.isfinite(f), f, np.nan)

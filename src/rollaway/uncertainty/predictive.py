@@ -156,5 +156,50 @@ def model_error_draws(pred: dict, n: int, factor: float, rng: np.random.Generato
     return np.clip(eps, -0.9, 9.0)       # a torque never changes sign through its model error
 
 
-__all__ = ["edge_sd", "extrapolation", "force_distance", "measured_factor", "model_error_draws", "model_error_sd",
-           "record", "validate"]
+def start_weight(time_s, start) -> np.ndarray:
+    """The weight of the start's error (the record's ``model_error_start`` = [rel_sd, full_s, zero_s]) at *time_s*:
+    1 over the start samples' span (t ≤ full_s), falling linearly to 0 at the first sample after them (zero_s),
+    0 after: what the bench measured at the start, and nothing between its samples said it ends sooner."""
+    _, full, zero = (float(x) for x in start)
+    t = np.asarray(time_s, float)
+    if zero <= full:
+        return (t <= full).astype(float)
+    return np.clip((zero - t) / (zero - full), 0.0, 1.0)
+
+
+def start_error_draws(pred: dict, n: int, factor: float, rng: np.random.Generator, edge: float = 0.0,
+                      measured: float | None = None) -> np.ndarray | None:
+    """n relative torque errors at the start of the hold beyond the model error drawn for the whole hold
+    (:func:`model_error_draws`), or None where the record has none to add: the start's held-out error
+    (``model_error_start``, :func:`rollaway.uncertainty.bands.start_error`), widened as the measured error is
+    (*measured*, else *factor*), less the whole hold's scale (:func:`model_error_sd`) in quadrature — the start's
+    error is at least its own, not the sum of both.  Student-t with the record's dof (a scale from a handful of
+    tests)."""
+    start = pred.get("model_error_start")
+    if not start:
+        return None
+    grown = float(start[0]) * (factor if measured is None else measured)
+    extra = grown ** 2 - model_error_sd(pred, factor, edge, measured) ** 2
+    if extra <= 0.0:
+        return None
+    dof = max(int(pred.get("model_error_dof", 1)), 1)
+    return np.clip(np.sqrt(extra) * rng.standard_t(dof, n), -0.9, 9.0)
+
+
+class StartError:
+    """A margin function (:class:`rollaway.hold.numeric.MarginFunction`) with each point's start error *extra*
+    (:func:`start_error_draws`) on its torque, weighted in time by :func:`start_weight` of the record's *start*."""
+
+    def __init__(self, fn, extra: np.ndarray, start):
+        self.fn, self.extra, self.start = fn, np.asarray(extra, float), start
+
+    def __len__(self) -> int:
+        return len(self.fn)
+
+    def __call__(self, time_s, index, force_N=None):
+        i = np.asarray(index, int)
+        return self.fn(time_s, i, force_N) * (1.0 + self.extra[i] * start_weight(time_s, self.start))
+
+
+__all__ = ["StartError", "edge_sd", "extrapolation", "force_distance", "measured_factor", "model_error_draws",
+           "model_error_sd", "record", "start_error_draws", "start_weight", "validate"]
