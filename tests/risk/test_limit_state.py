@@ -158,3 +158,35 @@ def test_a_fleet_facing_the_untested_direction_carries_the_torque_over_as_a_sing
     assert carried == pytest.approx(expect, rel=1e-3) and np.median(carried) < 0.9 * np.median(plain)   # μ_d drawn ± 1e-4
     carried, plain, _ = got["downhill"]
     assert np.array_equal(carried, plain)
+
+
+def test_a_fleet_carries_the_start_error_of_the_hold_as_a_single_car_does(write_population, tmp_path):
+    """A record with a start error (rollaway.uncertainty.bands.start_error: 10 % at the first sample, fading by
+    300 s): each car's torque at the start of the hold errs by its own draw of it (the same as a single car's band,
+    rollaway.uncertainty.predictive.StartError).  From ambient the torque is flat, so a car's least margin is its
+    margin times 1 + its start error where that is negative, and untouched where it is positive (after 300 s
+    nothing is left of it); without a start error in the record there is none."""
+    from rollaway.model.model_file import save_model
+    from rollaway.risk.limit_state import model_draws
+    pred = {"model_error_rel_sd": 0.0, "model_error_floor_rel_sd": 0.0, "model_error_dof": 5,
+            "tested_hand_force_N": [180.0, 360.0], "tested_initial_temp_C": [20.0, 250.0],
+            "tested_duration_s": 3600.0, "tested_directions": ["downhill", "uphill"]}
+    got = {}
+    for start in (None, [0.1, 0.0, 300.0]):
+        model = DrumModel("paper", covariance=Covariance(("mu_drum",), np.array([[1e-12]])),
+                          predictive=pred if start is None else {**pred, "model_error_start": start})
+        path = tmp_path / f"m{start is None}.toml"
+        save_model(model, path)
+        amb = model.params.ambient_temp_C
+        head = (f'params = "{path.name}"\ngrade_pct = 20\ndirection = "uphill"\noccupants = 1\nhand_force_N = 300\n'
+                f'duration_s = 1800\ninitial_drum_temp_C = {amb}\n')
+        pop = load_population(write_population("", head=head))
+        draws = model_draws(pop, 2000, np.random.default_rng(0))
+        got[start is None] = (margins(pop, {}, 2000, draws).brake, draws)
+    flat, draws = got[True]
+    m0 = flat / (1.0 + draws["eps"])                      # the model error ε (a transducer's 0.1 %) divided out
+    assert "start" not in draws and np.std(m0) < 1e-4 * np.mean(m0)
+    brake, draws = got[False]
+    extra = draws["start"][0]
+    assert np.std(extra) > 0.05
+    assert brake == pytest.approx(np.median(m0) * (1.0 + draws["eps"]) * (1.0 + np.minimum(extra, 0.0)), rel=1e-3)

@@ -16,7 +16,9 @@ slope balance); with ``direction = "both"`` it must hold facing either way (the 
 A calibrated model brings its own uncertainty (:mod:`rollaway.uncertainty.draws`,
 :mod:`rollaway.uncertainty.predictive`): each car also gets one competing effect set (by its weight),
 one draw of the fitted values (as a deviation from the fitted value, added to the car's own value
-where the population varies the same name) and one model error ε (torque × (1 + ε): the margin scales).
+where the population varies the same name) and one model error ε (torque × (1 + ε): the margin scales), and
+where the record has one, the error of the start of the hold (:func:`rollaway.uncertainty.predictive.
+start_error_draws`; such cars are evaluated on the time grid).
 """
 from __future__ import annotations
 
@@ -70,9 +72,11 @@ def margins(population, values: dict[str, np.ndarray], n: int | None = None, dra
     base = population.base
     groups = draws["groups"] if draws else [(np.arange(n), population.model, {})]
     brake, tyre = np.empty(n), np.empty(n)
-    for idx, model, fitted in groups:
+    start = (draws or {}).get("start")
+    for k, (idx, model, fitted) in enumerate(groups):
         if idx.size == 0:
             continue
+        own_start = None if start is None or start[1][k] is None else (start[0][idx], start[1][k])
         sub = {k: np.broadcast_to(v, (n,))[idx] for k, v in values.items()}
         for k, dv in fitted.items():          # fitted-value draws: deviations from the fitted value
             if k in SPEC_BY_NAME:
@@ -86,8 +90,8 @@ def margins(population, values: dict[str, np.ndarray], n: int | None = None, dra
         b, t = np.full(idx.size, np.inf), np.full(idx.size, np.inf)
         for d in population.directions:
             t = np.minimum(t, tyre_adhesion_margin(params, g, d, occ))
-            if model.has_effects or effect_values:
-                m = _least_margin_with_effects(model, params, effect_values, f, g, d, occ, dur, idx.size)
+            if model.has_effects or effect_values or own_start is not None:
+                m = _least_margin_with_effects(model, params, effect_values, f, g, d, occ, dur, idx.size, own_start)
             else:
                 m = min_brake_margin(params, f, g, d, occ, dur)
             if draws is not None and "friction_z" in draws:     # a direction the bench did not test
@@ -115,8 +119,11 @@ def _carried(model: DrumModel, params, grade, direction: str, margin, z) -> np.n
 
 
 def _least_margin_with_effects(model: DrumModel, params, effect_values, force, grade, direction, occupants,
-                               duration_s, n: int) -> np.ndarray:
-    """Least brake margin of n cars of a model with effects: a screening grid, then the fine grid near 1."""
+                               duration_s, n: int, start=None) -> np.ndarray:
+    """Least brake margin of n cars of a model with effects: a screening grid, then the fine grid near 1.
+    *start*: (each car's start error, the record's ``model_error_start``) on the torque at the start of the hold
+    (:class:`rollaway.uncertainty.predictive.StartError`)."""
+    from rollaway.uncertainty.predictive import StartError, start_weight
     from rollaway.hold.closed_form import _effective
     g, sign = _effective(grade, direction)
     t_req = np.broadcast_to(required_torque(params, g, occupants), (n,))
@@ -139,6 +146,8 @@ def _least_margin_with_effects(model: DrumModel, params, effect_values, force, g
                            values={k: col(v) for k, v in vals.items()} or None)
             with np.errstate(divide="ignore", invalid="ignore"):
                 marg = np.where(col(cars["t_req"]) > 0, 2.0 * s.torque_Nm / col(cars["t_req"]), np.inf)
+            if start is not None:
+                marg = marg * (1.0 + col(start[0]) * start_weight(t, start[1]))
             out[lo:lo + j.size] = np.min(marg, axis=1)
         return out
 
@@ -151,6 +160,8 @@ def _least_margin_with_effects(model: DrumModel, params, effect_values, force, g
         fn = MarginFunction(model, cars["force"][near], cars["sign"][near], cars["t_req"][near], per("mu_drum"),
                             per("gap_m"), per("initial_drum_temp_C"), per("heat_transfer_W_m2K"),
                             values={k: v[near] for k, v in vals.items()} or None)
+        if start is not None:
+            fn = StartError(fn, np.asarray(start[0])[near], start[1])
         least[near] = least_margin(fn, cars["dur"][near])
     elif near.size:
         least[near] = np.minimum(least[near], grid_min(near, GRID_POINTS))
@@ -167,7 +178,8 @@ def model_draws(population, n: int, rng: np.random.Generator) -> dict | None:
     from rollaway.uncertainty.direction import mixture_parts, untested_direction
     from rollaway.uncertainty.draws import draw_values, own_record, torque_level_ratio, zero_torque_force
     from rollaway.physics.drum import direction_sign
-    from rollaway.uncertainty.predictive import edge_sd, extrapolation, measured_factor, model_error_draws
+    from rollaway.uncertainty.predictive import (edge_sd, extrapolation, measured_factor, model_error_draws,
+                                                 start_error_draws)
 
     model = population.model
     pred = model.predictive
@@ -204,12 +216,19 @@ def model_draws(population, n: int, rng: np.random.Generator) -> dict | None:
     f0 = zero_torque_force(model)
     factor, _ = extrapolation(pred, hand_force_N=force, direction=pop.directions[0], initial_temp_C=t0,
                               duration_s=hold, zero_torque_force_N=f0, level_ratio=level)
-    eps = np.empty(n)
+    eps, extra, starts = np.empty(n), np.zeros(n), []
     for k, (_, m) in enumerate(parts):     # each effect set errs by its own held-out record (and force extrapolation)
         own = own_record(pred, m)
-        eps[owner == k] = model_error_draws(own, int(np.sum(owner == k)), factor, rng, edge_sd(own, force, f0, level),
-                                            measured_factor(own, factor, force, f0, level))
+        mine = owner == k
+        edge, measured = edge_sd(own, force, f0, level), measured_factor(own, factor, force, f0, level)
+        eps[mine] = model_error_draws(own, int(np.sum(mine)), factor, rng, edge, measured)
+        more = start_error_draws(own, int(np.sum(mine)), factor, rng, edge, measured)
+        starts.append(None if more is None else own["model_error_start"])
+        if more is not None:
+            extra[mine] = more
     out = {"groups": groups, "effects": effects, "eps": eps}
+    if any(st is not None for st in starts):    # the start of the hold errs by the record's start error too
+        out["start"] = (extra, starts)
     if len(pred.get("tested_directions") or ()) == 1:     # the untested direction's friction coefficient (_carried)
         out["friction_z"] = rng.standard_normal(n)
     return out

@@ -61,7 +61,10 @@ def _take(draws: dict | None, src: np.ndarray) -> dict | None:
     own = owner[src]
     groups = [(np.flatnonzero(own == k), m, {name: v[src] for name, v in fitted.items()})
               for k, (_, m, fitted) in enumerate(draws["groups"])]
-    return {"groups": groups, "effects": {k: v[src] for k, v in draws["effects"].items()}, "eps": draws["eps"][src]}
+    out = {"groups": groups, "effects": {k: v[src] for k, v in draws["effects"].items()}, "eps": draws["eps"][src]}
+    if "start" in draws:
+        out["start"] = (draws["start"][0][src], draws["start"][1])
+    return out
 
 
 def sobol_indices(population, base_samples: int = BASE_SAMPLES, seed: int | None = 0) -> Sensitivity:
