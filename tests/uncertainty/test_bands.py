@@ -436,6 +436,10 @@ def test_a_start_the_held_out_tests_miss_widens_the_questions_it_decides(monkeyp
     start = spline.predictive["model_error_start"]
     assert start[0] > 0.05 > spline.predictive["model_error_rel_sd"] and start[1] == 0.0 and start[2] == 300.0
     assert rows["force_high"]["covered"] and rows["hotter"]["covered"], rows
+    from rollaway.uncertainty.draws import rollaway_risk
+    risk = rollaway_risk(seen[0].model, hand_force_N=450.0, grade_pct=20.0, direction="uphill", occupants=1,
+                         duration_s=3600.0, initial_temp_C=200.0, draws=300, seed=0)
+    assert risk.detail["start_decided"] > 0.1 and "the start of the hold decides" in risk.band_words()
 
 
 def test_the_start_error_fades_between_the_start_samples_and_the_next():

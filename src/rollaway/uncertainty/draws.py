@@ -115,6 +115,10 @@ class Risk:
         if (self.detail or {}).get("carried_over"):
             beyond += ("; its torque carried over from the tested direction with the friction coefficient drawn "
                        "apart from mu_drum (one direction pins the torque scale only)")
+        start = (self.detail or {}).get("start_decided", 0.0)
+        if start > 0.0:
+            beyond += (f"; the start of the hold decides {start:.0%} of the draws, which take the held-out error of "
+                       "the tests' starts there too")
         return f"band from {parts}{beyond}"
 
     def _repr_html_(self) -> str:  # notebooks
@@ -284,7 +288,8 @@ def rollaway_risk(model: DrumModel, *, hand_force_N: float, grade_pct: float, di
               "model_error_rel_sd": model_error_sd(pred, factor, edge,
                                                    measured_factor(pred, factor, float(hand_force_N), f0, level)),
               "models": [{"name": m.name, "weight": float(w), "draws": int(c)} for (w, m), c in zip(parts, counts)],
-              "half_width": _half_width(least), "carried_over": bool(carried_over(model, sign))}
+              "half_width": _half_width(least), "carried_over": bool(carried_over(model, sign)),
+              "start_decided": float(np.mean(start_factor != 1.0))}
     main = owner == 0
     return Risk(draws, float(np.mean(least < 1.0)), pct, pct_b, tp, tyre, vals0, least[main], t_roll[main],
                 detail)
