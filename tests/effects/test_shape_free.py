@@ -3,7 +3,8 @@ import numpy as np
 import pytest
 
 from rollaway.effects import get_effect
-from rollaway.effects.shape_free import from_model_file, is_shape_free, shape_hook, spline_effect, spline_factor
+from rollaway.effects.shape_free import (BEYOND_CENTRE, LEAST_FACTOR, from_model_file, is_shape_free, shape_hook,
+                                         spline_effect, spline_factor)
 from rollaway.errors import UserError
 from rollaway.model.drum_model import DrumModel, load_model
 from rollaway.model.model_file import model_to_toml, save_model
@@ -15,6 +16,31 @@ KNOTS = [0.0, 300.0, 900.0, 3600.0]
 def test_spline_factor_is_one_at_the_first_knot_piecewise_linear_and_flat_beyond():
     f = spline_factor([0.0, 150.0, 300.0, 600.0, 3600.0, 9000.0], KNOTS, [-0.02, -0.03, -0.01])
     np.testing.assert_allclose(f, [1.0, 0.99, 0.98, 0.965, 0.94, 0.94])
+
+
+def test_a_temperature_spline_goes_on_beyond_its_hottest_knot_by_a_held_share_of_its_last_slope():
+    """Below its first knot and beyond its last a spline in time is flat; one in temperature goes on beyond its
+    hottest knot with the held share ``beyond`` of its last slope (0: the law stops, 1: it goes on as the data
+    last showed), never below LEAST_FACTOR; the fit never frees that share (no sample lies there)."""
+    from rollaway.identify.model import BenchModel
+    knots, coef = [20.0, 100.0, 180.0], [-0.1, -0.2]
+    for beyond, at_260 in ((0.0, 0.7), (0.5, 0.6), (1.0, 0.5)):
+        np.testing.assert_allclose(spline_factor([0.0, 180.0, 220.0, 260.0], knots, coef, beyond),
+                                   [1.0, 0.7, 0.5 * (0.7 + at_260), at_260])
+    assert spline_factor([1e4], knots, coef, 1.0)[0] == LEAST_FACTOR
+    friction = spline_effect(get_effect("friction_temperature"), knots)
+    held = [p for p in friction.parameters if p.held]
+    assert [p.name for p in held] == ["beyond"] and held[0].neutral == 0.0 and held[0].initial == BEYOND_CENTRE
+    assert held[0].prior_sd > 0                          # fits: flat, as the data saw; the calibrated model: the centre
+    assert not any(p.held for p in spline_effect(get_effect("lining_creep"), KNOTS).parameters)
+    assert "friction_temperature_shape.beyond" not in BenchModel("paper", [friction]).parameter_names()
+    fall = {"friction_temperature_shape.c0": -0.1, "friction_temperature_shape.c1": -0.2}
+    torque = [float(DrumModel("paper", [friction], {**fall, "friction_temperature_shape.beyond": b})
+                    .evaluate(np.array([0.0]), 250.0, initial_temp_C=260.0).torque_Nm[0]) for b in (0.0, 0.5, 1.0)]
+    assert torque[0] > torque[1] > torque[2]            # a friction still falling at 180 °C: less torque from 260 °C
+    cool = [float(DrumModel("paper", [friction], {**fall, "friction_temperature_shape.beyond": b})
+                  .evaluate(np.array([0.0]), 250.0, initial_temp_C=150.0).torque_Nm[0]) for b in (0.0, 1.0)]
+    assert cool[0] == cool[1]                            # within the knots the share changes nothing
 
 
 def test_a_shape_free_creep_with_the_catalogue_law_at_its_knots_matches_it_there():

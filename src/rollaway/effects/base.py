@@ -69,6 +69,10 @@ class EffectParameter:
     description: str = ""
     typical: float | None = None   # a clearly visible but realistic value (synth default)
     per_test: bool = False         # one value per test (hooks get a per-sample array)
+    held: bool = False             # never fitted (the data cannot see it): fits keep its neutral value, the
+                                   # calibrated model takes `initial`, and the predictive covariance gives it the
+                                   # spread prior_sd about that, which the bands draw
+    prior_sd: float | None = None  # the assumed spread of a held parameter (drawn within its bounds)
 
     def __post_init__(self):
         if not (self.lower <= self.neutral <= self.upper and self.lower <= self.initial <= self.upper):

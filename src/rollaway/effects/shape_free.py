@@ -7,7 +7,12 @@ or q + s·g(x) where the physics is an absolute change (``Effect.shape_scale`` =
 same displacement at every hand force, which a factor on u_6 would turn into a loss proportional to the force).
 :mod:`rollaway.identify.shape` fits one to see the shape the data want; a saved model may carry one as a competing
 form (``[effects.NAME_shape]`` with ``knots`` and ``c0`` … in a model file, :mod:`rollaway.model.model_file`).
-Beyond the knots the spline is flat (the last segment's end value holds).
+Below the first knot the spline is flat.  Beyond the last knot a spline in time is flat (the last segment's end value
+holds); a spline in temperature has a held parameter ``beyond`` (:data:`BEYOND_CENTRE`, drawn by the bands with
+:data:`BEYOND_PRIOR_SD` within 0–1): the share of its last slope that goes on, from a law that stops changing at the
+hottest tested temperature (a glass transition that has saturated) to one that goes on as the data last showed
+(a fade that has just begun); fits keep it at 0 (flat: what the data saw), the calibrated model carries the centre — flat alone was optimistic where a modulus or friction was still falling at the
+hottest tested start, and the slope alone pessimistic where it had levelled off.
 """
 from __future__ import annotations
 
@@ -23,6 +28,11 @@ HOOK_COVARIATE = {"friction": "lining_temp_C", "lining_modulus": "lining_temp_C"
                   "lining_temperature": "time_s", "torque": "time_s"}
 COVARIATES = ("time_s", "lining_temp_C", "drum_temp_C", "hand_force_N")
 TEMPERATURE_HOOKS = ("drum_temperature", "lining_temperature")
+EXTENDED = ("lining_temp_C", "drum_temp_C")  # a temperature law may go on changing beyond the hottest tested point
+BEYOND_CENTRE = 0.5            # [assumed] between a law that stops at the hottest knot (0) and one that goes on along
+                               # its last slope (1): no sample says which
+BEYOND_PRIOR_SD = 0.5          # [assumed] drawn N(0.5, 0.5²) within [0, 1]: close to uniform over both ends
+LEAST_FACTOR = 0.05            # a continued spline never takes more than 95 % of its quantity
 
 
 def shape_hook(effect) -> tuple[str, str] | None:
@@ -39,14 +49,20 @@ def shape_hook(effect) -> tuple[str, str] | None:
     return hook, cov
 
 
-def spline_factor(x, knots, coef) -> np.ndarray:
-    """1 + Σ_j c_j·clip((x − k_j)/(k_{j+1} − k_j), 0, 1): a linear spline, 1 at the first knot."""
+def spline_factor(x, knots, coef, beyond=None) -> np.ndarray:
+    """1 + Σ_j c_j·clip((x − k_j)/(k_{j+1} − k_j), 0, 1): a linear spline, 1 at the first knot.  *beyond* (0–1):
+    beyond the last knot the last segment goes on with that share of its slope (0 or None: flat), the going-on
+    never taking the factor below :data:`LEAST_FACTOR`."""
     x = np.asarray(x, float)
     g = np.zeros_like(x)
     for j, c in enumerate(coef):
         width = max(knots[j + 1] - knots[j], 1e-12)
         g = g + c * np.clip((x - knots[j]) / width, 0.0, 1.0)
-    return 1.0 + g
+    if beyond is None:
+        return 1.0 + g
+    width = max(knots[-1] - knots[-2], 1e-12)
+    on = coef[-1] * beyond * np.maximum(x - knots[-1], 0.0) / width
+    return np.maximum(1.0 + g + on, np.minimum(1.0 + g, LEAST_FACTOR))
 
 
 def _covariate(state, name: str) -> np.ndarray:
@@ -66,7 +82,7 @@ def spline_effect(effect, knots, scale: float | None = None) -> type[Effect]:
     scale = float((getattr(effect, "shape_scale", 0.0) if scale is None else scale) or 0.0)
 
     def apply(self, state, q, v):
-        f = spline_factor(_covariate(state, cov), knots, [v[k] for k in names])
+        f = spline_factor(_covariate(state, cov), knots, [v[k] for k in names], v["beyond"] if extend else None)
         if hook in TEMPERATURE_HOOKS:
             return state.ambient_C + (q - state.ambient_C) * f
         if scale:
@@ -76,6 +92,12 @@ def spline_effect(effect, knots, scale: float | None = None) -> type[Effect]:
     params = tuple(EffectParameter(k, "–", neutral=0.0, lower=-COEFFICIENT_BOUND, upper=COEFFICIENT_BOUND,
                                    initial=0.0, description=f"change of the factor over knot segment {j}")
                    for j, k in enumerate(names))
+    extend = cov in EXTENDED
+    if extend:
+        params += (EffectParameter("beyond", "–", neutral=0.0, lower=0.0, upper=1.0, initial=BEYOND_CENTRE,
+                                   held=True, prior_sd=BEYOND_PRIOR_SD,
+                                   description="share of the last segment's slope that goes on beyond the hottest "
+                                               "knot (held: no sample lies there; the bands draw it)"),)
     base, knot_list = effect.name, tuple(float(k) for k in knots)
     return type(f"ShapeFree_{effect.name}", (Effect,), {
         "__reduce__": lambda self: (_instance, (base, knot_list, scale)),    # pickled as its base, knots, scale

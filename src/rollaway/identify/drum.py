@@ -357,12 +357,16 @@ def _weakest(fit: FitResult, names: list[str]):
 def predictive_covariance(fit: FitResult, priors: dict[str, float], inflation: dict | None = None) -> Covariance | None:
     """Covariance of the fit's parameters and of the brake parameters it held fixed (*priors*: their
     assumed spreads), from the data's information plus a Gaussian prior on the fixed ones (a held parameter
-    whose catalogue effect the fit has, e.g. ``gap_m`` beside ``installation_gap``, is the effect's).  *inflation*:
+    whose catalogue effect the fit has, e.g. ``gap_m`` beside ``installation_gap``, is the effect's); an effect's
+    held parameters (``EffectParameter.held``, e.g. how far a shape-free temperature law goes on beyond its hottest
+    knot) with their ``prior_sd``.  *inflation*:
     channel → factor on that channel's variance factor (autocorrelated residuals,
     :func:`rollaway.identify.intervals.ess_inflation`)."""
     fitted_effects = {e.name for e in getattr(fit.model, "effects", ())}
     priors = {n: sd for n, sd in priors.items()
               if not (n in FREE_PARAMETERS and FREE_PARAMETERS[n].effect in fitted_effects)}
+    priors.update({f"{e.name}.{p.name}": p.prior_sd for e in getattr(fit.model, "effects", ())
+                   for p in e.parameters if p.held and p.prior_sd})       # an effect's held parameters: assumed
     names = list(fit.names) + [n for n in priors if n not in fit.names]
     if not names:
         return None
@@ -380,6 +384,7 @@ def predictive_covariance(fit: FitResult, priors: dict[str, float], inflation: d
     scaled = 0.5 * (scaled + scaled.T)
     w, v = np.linalg.eigh(scaled)
     cov = ((v * np.clip(w, 0.0, None)) @ v.T) / np.outer(scale, scale)       # PSD, then back to the units
+    cov = 0.5 * (cov + cov.T)             # exactly symmetric (a prior-held column leaves rounding-sized asymmetry)
     keep = [i for i, m in enumerate(names) if np.isfinite(cov[i, i]) and cov[i, i] > 0]
     if not keep:
         return None

@@ -37,7 +37,8 @@ def calibrated_model(fit, data_path: str | Path | None = None, command: str = "f
     """The drum model a fit found: its parameter set with μ_d and h, its effects and values, covariance."""
     from rollaway.model.model_file import provenance_for
 
-    model = fit.model.drum_model(fit.values, covariance=fit_covariance(fit))
+    held = {f"{e.name}.{p.name}": p.initial for e in fit.model.effects for p in e.parameters if p.held}
+    model = fit.model.drum_model({**held, **fit.values}, covariance=fit_covariance(fit))   # held: at their centre
     model.calibration = dict(fit.fit_info.get("calibration", {}))
     model.predictive = dict(fit.fit_info.get("predictive", {}))
     alts = fit.fit_info.get("alternatives") or []

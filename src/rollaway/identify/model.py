@@ -71,7 +71,7 @@ class BenchModel:
     def parameter_names(self) -> list[str]:
         """Global parameters (one value for all tests): the freed brake parameters, then the effects'."""
         return list(self.free) + [f"{e.name}.{p.name}" for e in self.effects for p in e.parameters
-                                  if not p.per_test]
+                                  if not p.per_test and not p.held]
 
     def per_test_parameters(self) -> list[str]:
         """Parameters with one value per test: T_0 first, then per-test effect parameters."""
@@ -81,7 +81,7 @@ class BenchModel:
         """Starting point of a fit: the set's μ_d and h, each effect parameter's ``initial``."""
         v = self.neutral_values()
         for e in self.effects:
-            v.update({f"{e.name}.{p.name}": p.initial for p in e.parameters})
+            v.update({f"{e.name}.{p.name}": p.initial for p in e.parameters if not p.held})
         return v
 
     def neutral_values(self) -> dict[str, float]:
@@ -107,13 +107,13 @@ class BenchModel:
         from rollaway.model.drum_parameters import FREE_PARAMETERS
         return [n for n in self.free if FREE_PARAMETERS[n].channel == "temperature"] + [
             f"{e.name}.{p.name}" for e in self.effects if e.touches_temperature() for p in e.parameters
-            if not p.per_test]
+            if not p.per_test and not p.held]
 
     def torque_parameters(self) -> list[str]:
         from rollaway.model.drum_parameters import FREE_PARAMETERS
         return [n for n in self.free if FREE_PARAMETERS[n].channel == "torque"] + [
             f"{e.name}.{p.name}" for e in self.effects if not e.touches_temperature() for p in e.parameters
-            if not p.per_test]
+            if not p.per_test and not p.held]
 
     # -- evaluation ------------------------------------------------------------------
     def _active(self, values: dict, data: Measurements | None = None) -> list[tuple[Effect, dict]]:
