@@ -464,7 +464,7 @@ def test_a_hot_start_beyond_the_tested_ones_draws_how_far_the_temperature_law_go
     """A sigmoid modulus drop at 15-min samples whose hottest test started at 182 °C (campaign 93 of
     band_questions): the mixture's friction spline still fell at its hottest knot.  Flat beyond it, the bands from
     200 °C sat wholly above the truth (1.025–1.121 over 1.011 inside; 1.013–1.189 over 0.961 at 450 N: sure of a
-    hold that fails).  Each draw now continues the last slope by a share in 0–1: the inside question is covered and
+    hold that fails).  Each draw now continues the last slope by a share in 0–1: both questions are covered and
     no band is sure of the wrong answer.  The share is in the spline's covariance at about its assumed spread (the
     data hardly see it), not fitted."""
     import rollaway.identify.diagnose as dg
@@ -477,5 +477,5 @@ def test_a_hot_start_beyond_the_tested_ones_draws_how_far_the_temperature_law_go
     c = spline.covariance
     k = next(i for i, n in enumerate(c.names) if n.endswith("_shape.beyond"))
     assert 0.9 * BEYOND_PRIOR_SD < np.sqrt(c.matrix[k, k]) <= BEYOND_PRIOR_SD     # hardly a sample lies beyond
-    assert rows["inside"]["covered"], rows["inside"]
+    assert rows["inside"]["covered"] and rows["force_high"]["covered"], rows
     assert not any(confident_wrong(r) for r in rows.values()), rows
