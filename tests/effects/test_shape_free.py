@@ -28,6 +28,9 @@ def test_a_temperature_spline_goes_on_beyond_its_hottest_knot_by_a_held_share_of
         np.testing.assert_allclose(spline_factor([0.0, 180.0, 220.0, 260.0], knots, coef, beyond),
                                    [1.0, 0.7, 0.5 * (0.7 + at_260), at_260])
     assert spline_factor([1e4], knots, coef, 1.0)[0] == LEAST_FACTOR
+    deep = [-0.9, -0.9]                                  # an absolute change's spline may fall below LEAST_FACTOR
+    np.testing.assert_array_equal(spline_factor([50.0, 180.0, 300.0], knots, deep, 0.0),
+                                  spline_factor([50.0, 180.0, 300.0], knots, deep))   # share 0: exactly flat
     friction = spline_effect(get_effect("friction_temperature"), knots)
     held = [p for p in friction.parameters if p.held]
     assert [p.name for p in held] == ["beyond"] and held[0].neutral == 0.0 and held[0].initial == BEYOND_CENTRE

@@ -194,3 +194,27 @@ def test_a_shape_free_form_that_competes_in_the_bands_has_no_segment_of_one_samp
                                                                                              "time_s"))
     rows = band_campaign(21, sampling="15min")
     assert rows and all(r["covered"] and not confident_wrong(r) for r in rows), rows
+
+
+def test_a_temperature_splines_held_share_beyond_its_hottest_knot_changes_no_fit(monkeypatch):
+    """The share of the last slope a temperature spline continues beyond its hottest knot is held (never fitted): a
+    fit keeps it at 0, so its BIC and values are those of the same spline without it, with samples beyond the
+    knot (a refitted T_0 puts some there)."""
+    import numpy as np
+    import rollaway.effects.shape_free as sf
+    from rollaway.effects import get_effect
+    from rollaway.identify.calibrate import calibrate
+    from rollaway.identify.shape import covariate_of, flexible_effect, shape_hook
+    from tests.identify.bench_generator import generate
+    data = generate(["modulus_sigmoid"], sampling="5min", seed=5, forces=np.linspace(190.0, 350.0, 3))
+    eff = get_effect("modulus_temperature")
+    fit = calibrate(data, [eff])
+    x = covariate_of(fit, shape_hook(eff)[1])
+    x = x[x < np.percentile(x, 97)]                 # the hottest 3 % of the samples lie beyond the last knot
+    held = flexible_effect(eff, x)
+    monkeypatch.setattr(sf, "EXTENDED", ())
+    flat = flexible_effect(eff, x)
+    assert [p.name for p in held.parameters] == [p.name for p in flat.parameters] + ["beyond"]
+    a, b = (calibrate(data, [c]) for c in (held, flat))          # each from its effects' start values
+    assert "modulus_temperature_shape.beyond" not in a.values and a.bic == b.bic
+    assert a.values.keys() == b.values.keys() and all(np.array_equal(a.values[k], b.values[k]) for k in a.values)
