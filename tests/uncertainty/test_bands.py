@@ -479,3 +479,23 @@ def test_a_hot_start_beyond_the_tested_ones_draws_how_far_the_temperature_law_go
     assert 0.9 * BEYOND_PRIOR_SD < np.sqrt(c.matrix[k, k]) <= BEYOND_PRIOR_SD     # hardly a sample lies beyond
     assert rows["inside"]["covered"] and rows["force_high"]["covered"], rows
     assert not any(confident_wrong(r) for r in rows.values()), rows
+
+
+def test_where_two_splines_along_different_covariates_clear_the_structure_they_carry_the_bands(monkeypatch):
+    """A cable relaxation with a friction fade above a temperature (1-min, two-effect campaign 31 of
+    band_questions): no catalogue form clears the structure, and the bands drew the drum's own error ×4
+    (half-widths 0.13–0.16 at 270 N, 450 N and 280 °C).  A friction spline beside a cable spline clears it and
+    predicts the held-out tests at the noise: it takes the mixture with its own error, and the bands hold the
+    truth at a tenth of that width."""
+    from tests.uncertainty.band_questions import campaign as question_campaign
+    import rollaway.identify.diagnose as dg
+    seen, original = [], dg.diagnose
+    monkeypatch.setattr(dg, "diagnose", lambda *a, **k: seen.append(original(*a, **k)) or seen[-1])
+    rows = question_campaign(31, two=True)
+    d = seen[0]
+    assert d.verdict == "none" and d.remaining_structure
+    pair = [(w, m) for w, m in d.model.alternatives if m.name.count("_shape") == 2]
+    assert pair and pair[0][0] > 0.5, d.model.alternatives
+    assert pair[0][1].predictive["model_error_rel_sd"] < d.model.predictive["model_error_rel_sd"] / 4
+    assert len(rows) == 4 and all(r["covered"] for r in rows), rows
+    assert max(r["half_width"] for r in rows if r["question"] != "force_low") < 0.05, rows

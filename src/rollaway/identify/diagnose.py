@@ -43,7 +43,7 @@ from rollaway.identify.detection import detection_limits, hidden_shifts, hidden_
 from rollaway.identify.diagnose_words import describe_residual, no_candidate_words, noise_words, structure_words
 from rollaway.identify.partner import beside_partial, own_evidence, stood_for
 from rollaway.identify.predictive_set import attach_predictive, interval_words
-from rollaway.identify.shape import (candidate_shapes, channel_alternatives, channel_rivals, loose_form,
+from rollaway.identify.shape import (candidate_shapes, channel_alternatives, channel_rivals, loose_form, pair_shapes,
                                      other_form_rivals, shape_rivals)
 from rollaway.identify.workers import fit_all
 from rollaway.identify.separating_test import tell_apart
@@ -310,7 +310,7 @@ def diagnose(data: Measurements, params=None, effects=None, *, noise_torque_Nm: 
     if verdict == "none" and remaining and not rivalry:
         shapes = candidate_shapes(data, first_cands, drum.plan, nq, nt)    # which quantity, whatever its form
         rivalry = closest(base, first_cands, base_cv, BIC_THRESHOLD, validity(full), nq.sigma, shapes)
-        forms = [a["shape_fit"] for a in rivalry if "shape_fit" in a]       # the closest effects' own shapes
+        forms = [a["shape_fit"] for a in rivalry if "shape_fit" in a] + pair_shapes(data, shapes, drum.plan, nq, nt)
     weak = weak_alternatives(params, base, first_cands, validity(full), nq.sigma) if not chosen and not remaining else []
     indist = [" + ".join(a["effects"]) for a in rivalry + weak]
     ev += alternative_words(verdict, rivalry + weak, [e["effect"] for e in selected])

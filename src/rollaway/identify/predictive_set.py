@@ -32,6 +32,7 @@ def attach_predictive(data, refined: FitResult, pool: list[FitResult], n_effects
     :class:`~rollaway.bench.noise.Noise`, for the test); a catalogue form never below *refined*'s when *misfit* is
     set (the structure the verdict leaves says no catalogue form is right).  A shape-free set errs by its own
     held-out record: which quantity changes is carried by the channel rivals' weights, not by a floor."""
+    from rollaway.effects.shape_free import is_shape_free
     from rollaway.identify.ambiguity import not_ruled_out
     from rollaway.uncertainty.bands import COMPETING_BIC, alternatives, model_error
     from rollaway.model.predictive_record import record
@@ -49,9 +50,11 @@ def attach_predictive(data, refined: FitResult, pool: list[FitResult], n_effects
         if f is refined:
             continue
         f.covariance = predictive_covariance(f, drum.fixed_priors(), ess_inflation(f))
-        own = misfit if noise is None else (misfit or "partial") if structure(f, *noise)["structured"] else False
+        structured = noise is None or structure(f, *noise)["structured"]
+        own = misfit if noise is None else (misfit or "partial") if structured else False
         err = model_error(f, own)
-        if misfit == "unexplained" or misfit and not has_shape_free(f):   # no catalogue form errs less than the verdict
+        pair = not structured and sum(map(is_shape_free, f.model.effects)) >= 2    # two forms clear the structure
+        if misfit == "unexplained" and not pair or misfit and not has_shape_free(f):   # no catalogue form errs less
             err["rel_sd"] = max(err["rel_sd"], refined.fit_info["predictive"]["model_error_rel_sd"])
         f.fit_info["predictive"] = record(err, val)
         f.fit_info["calibration"] = drum.record()
