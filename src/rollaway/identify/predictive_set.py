@@ -30,8 +30,11 @@ def attach_predictive(data, refined: FitResult, pool: list[FitResult], n_effects
     values (a zero offset per test): its held-out score refits the held-out test's own values.  Each alternative
     carries its own model error: widened as "partial" when its residual is structured (*noise*: the channels'
     :class:`~rollaway.bench.noise.Noise`, for the test); a catalogue form never below *refined*'s when *misfit* is
-    set (the structure the verdict leaves says no catalogue form is right).  A shape-free set errs by its own
-    held-out record: which quantity changes is carried by the channel rivals' weights, not by a floor."""
+    set (the structure the verdict leaves says no catalogue form is right), and, where no catalogue form clears
+    the structure (*misfit* ``"unexplained"``), no set errs less than it either — but a pair of shape-free forms
+    whose residual is clean (:func:`rollaway.identify.shape.pair_shapes`: two quantities changed, along different
+    covariates, and together they explain what no catalogue form did).  A shape-free set errs by its own held-out
+    record otherwise: which quantity changes is carried by the channel rivals' weights, not by a floor."""
     from rollaway.effects.shape_free import is_shape_free
     from rollaway.identify.ambiguity import not_ruled_out
     from rollaway.uncertainty.bands import COMPETING_BIC, alternatives, model_error
