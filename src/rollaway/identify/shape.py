@@ -144,21 +144,15 @@ def candidate_shapes(data, candidates, params, nq, nt, top: int = SHAPE_TOP) -> 
     return {e: (f, not structure(f, nq, nt)["structured"]) for (e, _), f in zip(jobs, done) if f.jacobian is not None}
 
 
-PAIR_SEGMENTS = 4             # knot segments of each of two splines along one covariate: one knot per segment of a
-                              # spline alone left their held-out predictions trading one quantity for the other
-
-
 def pair_shapes(data, shapes: dict, params, nq, nt) -> list:
-    """Pairs of the shape-free fits *shapes* (:func:`candidate_shapes`) of two quantities (a function of the lining
+    """Pairs of the shape-free fits *shapes* (:func:`candidate_shapes`) along different covariates (a function of
     temperature beside one of time), each fitted together (brake parameters of *params*, side by side on the
     machine's cores), that clear the structure (:func:`rollaway.identify.selection.structure` with the channel
     noises *nq*, *nt*) and lower BIC below every one of them alone: where no catalogue form clears the
     structure, two effects in forms the catalogue lacks may have changed two quantities, which no one spline
-    follows beyond the tested conditions.  Two splines along one covariate (a friction and a lining modulus, both
-    of the lining temperature) are paired only where both directions were tested — the self-energising factor
-    then tells the two quantities apart — and with :data:`PAIR_SEGMENTS` segments each (with as many as a spline
-    alone, their held-out predictions ran away, one quantity traded for the other).  A spline in hand force is
-    left out: its knots are the tested forces, each pinned by the test the other way at that force
+    follows beyond the tested conditions.  Two splines along one covariate are left out: they trade one
+    quantity for the other within the tested conditions (held-out predictions of such pairs run away), and so is
+    a spline in hand force: its knots are the tested forces, each pinned by the test the other way at that force
     whichever test is held out, so no held-out prediction checks it (beside a friction spline, one drew bands 20 %
     from the truth inside the tested range)."""
     from rollaway.identify.selection import structure
@@ -167,18 +161,8 @@ def pair_shapes(data, shapes: dict, params, nq, nt) -> list:
     free = {e: next(x for x in f.model.effects if is_shape_free(x)) for e, f in solo.items()}
     hook = {e: shape_hook(get_effect(e)) for e in free}          # the catalogue effect's: the spline's own
     names = [e for e in solo if hook[e][1] != "hand_force_N"]
-    both = np.unique(np.sign(data.sign)).size > 1
-    jobs = []
-    for i, a in enumerate(names):
-        for b in names[i + 1:]:
-            if hook[a][0] == hook[b][0]:
-                continue
-            if hook[a][1] != hook[b][1]:
-                jobs.append(([type(free[a]), type(free[b])], params, dict(start=solo[a].values)))
-            elif both:
-                x = covariate_of(solo[a], hook[a][1])
-                knots = np.linspace(float(np.min(x)), float(np.max(x)), PAIR_SEGMENTS + 1)
-                jobs.append(([spline_effect(get_effect(a), knots), spline_effect(get_effect(b), knots)], params, {}))
+    jobs = [([type(free[a]), type(free[b])], params, dict(start=solo[a].values)) for i, a in enumerate(names)
+            for b in names[i + 1:] if hook[a][1] != hook[b][1] and hook[a][0] != hook[b][0]]
     best = min((f.bic for f in solo.values()), default=np.inf)
     done = fit_all(data, jobs) if jobs else []
     return [f for f in done if f.jacobian is not None and f.bic < best and not structure(f, nq, nt)["structured"]]
