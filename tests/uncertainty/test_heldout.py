@@ -114,6 +114,24 @@ def test_a_right_model_has_no_start_error_on_average():
     assert 0.02 < wrong < 0.04, wrong
 
 
+def test_the_start_error_counts_the_unseen_share_of_its_resolution():
+    """An error below the noise's resolution of a start score cannot be told from zero: the start's error is at
+    least the share UNSEEN of that resolution (one sample of a 5-min log a test: the noise of one sample, several
+    times the resolution of the hold's score), and where it is measured, the measured excess and that share add."""
+    from rollaway.uncertainty.bands import model_error, start_error
+    from rollaway.uncertainty.predictive import UNSEEN
+    rng = np.random.default_rng(8)
+    test_index, jac, mean = _design(np.random.default_rng(1))
+    times = np.tile(np.arange(12) * 300.0, 5)
+    for _ in range(20):
+        f = _fit(test_index, jac, mean, 0.5, rng)
+        f.data.time_s = times
+        st = start_error(f)
+        assert st["floor_rel_sd"] > 1.5 * model_error(f)["floor_rel_sd"] > 0.0
+        assert st["rel_sd"] == pytest.approx(np.sqrt(max(st["excess_ms"], 0.0) + (UNSEEN * st["floor_rel_sd"]) ** 2))
+        assert st["rel_sd"] >= UNSEEN * st["floor_rel_sd"]
+
+
 def test_model_error_grows_from_the_tested_edge():
     from rollaway.uncertainty.predictive import TRANSDUCER_REL_SD as G, UNSEEN
     pred = {"model_error_rel_sd": 0.01, "model_error_floor_rel_sd": 0.02}

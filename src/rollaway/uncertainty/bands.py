@@ -136,8 +136,13 @@ def _scored(fit, loo: np.ndarray, start: bool) -> tuple[list, float, float, floa
 
 def start_error(fit, loo: np.ndarray | None = None) -> dict | None:
     """The relative torque error of leave-one-test-out predictions at the start of each test (its samples of the
-    first :data:`START_WINDOW_S`), net of the noise and the re-calibration (as :func:`model_error`):
-    ``{"rel_sd", "excess_ms", "full_s", "zero_s"}``.  A hot start can decide a hold's least margin (a friction or a lining
+    first :data:`START_WINDOW_S`), net of the noise and the re-calibration (as :func:`model_error`), with the share
+    :data:`~rollaway.uncertainty.predictive.UNSEEN` of the noise's resolution of that score that the hold's error
+    counts at every question too (:func:`rollaway.uncertainty.predictive.model_error_sd`): ``{"rel_sd",
+    "excess_ms", "floor_rel_sd", "full_s", "zero_s"}``.  With one start sample a test (5- and 15-min sampling) that
+    resolution is the noise of one sample, several times the hold's, and an error below it cannot be told from
+    zero: a sigmoid modulus drop whose spline predicted its held-out starts within the noise was 4–10 % off between
+    them (15-min band campaign 45).  A hot start can decide a hold's least margin (a friction or a lining
     modulus that recovers as the lining cools: the torque rises after the start), and the share of each test's
     samples with the least predicted torque that :func:`model_error` scores holds one start sample at most: where a
     temperature law bends between the tested start temperatures, a spline's start error came out at 2–11 % while
@@ -151,7 +156,8 @@ def start_error(fit, loo: np.ndarray | None = None) -> dict | None:
         return None
     if loo is None:
         loo = loto_residuals(fit)[len(d):] * d.torque_sigma_Nm
-    _, excess, _, _ = _scored(fit, loo, True)
+    from rollaway.uncertainty.predictive import UNSEEN
+    _, excess, floor, _ = _scored(fit, loo, True)
     full, zero = [], []
     for k in range(d.n_tests):
         t = np.sort(d.time_s[d.test_index == k])
@@ -159,7 +165,8 @@ def start_error(fit, loo: np.ndarray | None = None) -> dict | None:
             inside = t <= t[0] + START_WINDOW_S
             full.append(t[inside][-1] - t[0])
             zero.append(t[~inside][0] - t[0] if np.any(~inside) else t[-1] - t[0])
-    return {"rel_sd": math.sqrt(max(excess, 0.0)), "excess_ms": excess, "full_s": float(np.median(full)),
+    return {"rel_sd": math.sqrt(max(excess, 0.0) + (UNSEEN * floor) ** 2), "excess_ms": excess, "floor_rel_sd": floor,
+            "full_s": float(np.median(full)),
             "zero_s": float(max(np.median(zero), np.median(full)))}
 
 
