@@ -269,6 +269,32 @@ def test_edge_error_sees_a_wrong_force_scaling_and_not_a_right_one():
     #                                                                             twice the edge's distance: 4×
 
 
+def test_the_low_edge_counts_the_unseen_share_of_its_resolution_and_the_high_edge_what_it_measured():
+    """Below the tested forces an error in the clamp that does not scale with the force grows relative to the
+    torque: an edge prediction within its noise is no proof of none, and the low edge's error counts the share
+    UNSEEN of its resolution beside its measured excess.  Above them such an error shrinks, and the high edge
+    counts only what it measured (0 for a right model on most seeds)."""
+    from rollaway.identify.calibrate import calibrate
+    from rollaway.identify.model import DrumPlan
+    from rollaway.model.parameters import load_parameters
+    from rollaway.uncertainty.bands import edge_error
+    from rollaway.uncertainty.predictive import UNSEEN
+    paper = load_parameters("paper")
+    plan = ("mu_drum", "heat_transfer_W_m2K", "shoe_arm_ratio", "u6_slope_m_per_N", "u6_offset_m")
+    zero_high = 0
+    for seed in range(4):
+        data = generate([], seed=310 + seed, forces=np.linspace(150.0, 400.0, 4))
+        data.torque_sigma_Nm, data.temp_sigma_C = np.full(len(data), 8.0), np.full(len(data), 1.5)
+        fit = calibrate(data, (), DrumPlan(paper, plan))
+        low, high = edge_error(fit, "low"), edge_error(fit, "high")
+        assert low["floor_rel_sd"] > 0.0 and high["floor_rel_sd"] > 0.0
+        assert low["rel_sd"] == pytest.approx(np.sqrt(max(low["excess_ms"], 0.0) + (UNSEEN * low["floor_rel_sd"]) ** 2))
+        assert low["rel_sd"] >= UNSEEN * low["floor_rel_sd"]
+        assert high["rel_sd"] == pytest.approx(np.sqrt(max(high["excess_ms"], 0.0)))
+        zero_high += high["rel_sd"] == 0.0
+    assert zero_high >= 1, zero_high
+
+
 def test_the_chosen_effect_in_the_datas_own_form_competes_in_the_bands(monkeypatch):
     """A power-law lining creep (12 % at an hour, t^0.35) on 5-min samples: the catalogue's exponential creep leaves
     no structure the residual tests see, but it flattens after a few minutes and leaves the later loss to the cooling

@@ -183,9 +183,15 @@ def start_error(fit, loo: np.ndarray | None = None) -> dict | None:
 def edge_error(fit, side: str) -> dict | None:
     """The relative torque error of predicting the tests at the lowest (*side* ``"low"``) or highest tested hand
     force from the model calibrated on the others — an extrapolation in hand force the data made — net of the noise
-    and of the re-calibration (as :func:`model_error`): ``{"rel_sd", "distance", "tests"}``, *distance* that
-    extrapolation's (:func:`rollaway.uncertainty.predictive.force_distance` from the other forces' range).  None
-    without a Jacobian or with fewer than three tested hand forces (two cannot be extrapolated from one)."""
+    and of the re-calibration (as :func:`model_error`): ``{"rel_sd", "distance", "tests", "excess_ms",
+    "floor_rel_sd"}``, *distance* that extrapolation's (:func:`rollaway.uncertainty.predictive.force_distance` from
+    the other forces' range).  At the low edge ``rel_sd`` counts the share
+    :data:`~rollaway.uncertainty.predictive.UNSEEN` of the noise's resolution of those scores, as the hold's error
+    does: below the tested forces the torque falls towards zero, and an error in the clamp that does not scale with
+    the force (too little clamp lost on cooling), within the noise at the lowest tested force, grows relative to
+    the torque (:func:`rollaway.uncertainty.predictive.edge_sd` carries it with the square of the distance).  Above
+    the tested forces such an error shrinks relative to the torque, and the high edge counts what it measured.
+    None without a Jacobian or with fewer than three tested hand forces (two cannot be extrapolated from one)."""
     from rollaway.uncertainty.predictive import force_distance
     d = fit.data
     if fit.jacobian is None or not fit.names or getattr(d, "hand_force_N", None) is None:
@@ -219,7 +225,11 @@ def edge_error(fit, side: str) -> dict | None:
     distance = force_distance([float(rest[0]), float(rest[-1])], float(edge), f0)
     if distance <= 0.0:
         return None
-    return {"rel_sd": math.sqrt(max(excess, 0.0)), "distance": distance, "tests": len(s2)}
+    from rollaway.uncertainty.predictive import UNSEEN
+    floor = math.sqrt(float(np.mean(noise)))
+    unseen = UNSEEN * floor if side == "low" else 0.0
+    return {"rel_sd": math.sqrt(max(excess, 0.0) + unseen ** 2), "distance": distance, "tests": len(s2),
+            "excess_ms": excess, "floor_rel_sd": floor}
 
 
 def alternatives(selected, competitors: list, keep=(), ties=()) -> list[tuple[float, object]]:
