@@ -117,6 +117,31 @@ def test_a_fold_the_solver_cannot_refit_keeps_its_linear_step(monkeypatch):
     np.testing.assert_array_equal(held[0], loto_residuals(fit))
 
 
+def test_a_fold_whose_refit_runs_away_keeps_its_linear_step(monkeypatch):
+    """A refitted fold whose model has no finite prediction of the held-out test (a refit that ran away) is no
+    score: its infinite χ² would decide the comparison alone.  It keeps its linear step, as a fold the solver cannot
+    take does; the folds that refit to a finite prediction are kept refitted."""
+    from rollaway.effects import get_effect
+    from rollaway.identify import refit_heldout
+    from rollaway.identify.shape import flexible_effect
+    data = _with_noise(generate(["modulus_sigmoid"], sampling="5min", seed=0, n_forces=3, directions=("downhill",)))
+    fit = calibrate(data, [flexible_effect(get_effect("modulus_temperature"), data.drum_temp_C)])
+    checks = [linear_holds(fit, h) for h in folds(data.n_tests)]
+    real, seen = refit_heldout._at, []
+
+    def running_away(d, model, values):          # the first refitted fold's prediction (not a check's) runs away
+        out = real(d, model, values)
+        if len(d) < len(data):
+            seen.append(len(seen))
+        return np.where(np.arange(out.size) == 0, np.inf, out) if seen == [0] and len(d) < len(data) else out
+    monkeypatch.setattr(refit_heldout, "_at", running_away)
+    held, refitted = refit_loto_residuals([fit])
+    assert checks.count(False) >= 1 and refitted == [checks.count(False) - 1]
+    assert np.all(np.isfinite(held[0]))
+    first = np.isin(np.concatenate([data.test_index, data.test_index]), folds(data.n_tests)[checks.index(False)])
+    np.testing.assert_array_equal(held[0][first], loto_residuals(fit)[first])
+
+
 def test_a_calibration_asked_next_is_fitted_beside_the_refitted_folds_and_kept(monkeypatch):
     """*also*: the folds come back as without it, and the calibration the caller asks for next is then served by
     the memo (no fit of its own), equal to one fitted alone."""

@@ -1,10 +1,18 @@
-"""rollaway.identify.twins: a friction law and a modulus law facing one way, compared with the arm ratio free (on
-data the model code did not make: tests/identify/heldout_names.py)."""
+"""rollaway.identify.twins: a friction law and a modulus law facing one way, compared with the arm ratio free; a
+lining creep and a cable relaxation beside a law whose form is re-formed (on data the model code did not make:
+tests/identify/heldout_names.py, tests/uncertainty/band_questions.py)."""
+import os
 from types import SimpleNamespace
 
+import pytest
+
 from rollaway.identify.diagnose import diagnose
-from rollaway.identify.twins import ARM, TWINS, twin_rival
+from rollaway.identify.twins import ARM, LOSSES, TWINS, loss_twin_rival, twin_rival
+from tests.identify.bench_generator import EFFECTS
 from tests.identify.heldout_names import campaign, judge
+from tests.uncertainty.band_questions import two_effect_data
+
+SLOW = pytest.mark.skipif(not os.environ.get("ROLLAWAY_SLOW"), reason="set ROLLAWAY_SLOW=1 (360 campaigns, ~4 min)")
 
 
 def test_a_modulus_law_named_friction_on_one_direction_is_flagged_once_the_arm_ratio_is_free():
@@ -31,3 +39,60 @@ def test_no_twin_where_the_arm_ratio_was_tested_or_free_or_the_verdict_is_anothe
     other = SimpleNamespace(effects=["lining_creep"], jacobian=[[1.0]], values={})
     assert twin_rival(None, held, other, one, 8.0) is None
     assert TWINS == {"friction_temperature": "modulus_temperature", "modulus_temperature": "friction_temperature"}
+
+
+@pytest.mark.parametrize("index, named, truth", [
+    (389, "cable_relaxation", "lining_creep"),       # quadratic friction beside an exponential lining creep, one way
+    (491, "lining_creep", "cable_relaxation"),       # quadratic friction beside an exponential cable relaxation
+])
+def test_a_loss_a_partner_law_s_form_picked_is_flagged_beside_its_twin(index, named, truth):
+    """Two-effect band campaigns whose second law is not written in the catalogue's form: with it the wrong loss
+    wins by 14.7 (389) and 302 (491) in BIC, and nothing was flagged.  With that law re-formed the true loss fits as
+    well or better and the held-out tests do not prefer the named one: the set with the true loss is named beside
+    the verdict, its fit the true loss beside the re-formed law."""
+    effects, *_, data, _ = two_effect_data(index)
+    assert {EFFECTS[e][1] for e in effects} & set(LOSSES) == {truth}
+    d = diagnose(data)
+    named_effects = [e["effect"] for e in d.effects]
+    assert named in named_effects, d.summary()
+    a = next(a for a in d.alternatives if truth in a["effects"])
+    assert set(a["effects"]) == {truth} | (set(named_effects) - {named})
+    assert "form freed" in a["why"] and a["delta_bic"] < 6.0
+    assert any(getattr(e, "name", "").endswith("_shape") for e in a["fit"].model.effects)
+
+
+def test_no_loss_twin_where_the_verdict_holds_no_loss_or_two_of_them():
+    """A verdict without a loss with time, with both losses, or of one effect: *rivalry* comes back as it was."""
+    fit = SimpleNamespace(effects=["friction_temperature", "modulus_temperature"], jacobian=[[1.0]], values={})
+    kept = [{"effects": ["x"]}]
+    assert loss_twin_rival(None, None, fit, [], {}, 8.0, rivalry=kept) == kept
+    fit.effects = ["lining_creep", "cable_relaxation"]
+    assert loss_twin_rival(None, None, fit, [], {}, 8.0, rivalry=kept) == kept
+    fit.effects = ["lining_creep"]
+    assert loss_twin_rival(None, None, fit, [], {}, 8.0) == []
+    assert LOSSES == {"lining_creep": "cable_relaxation", "cable_relaxation": "lining_creep"}
+
+
+@SLOW
+def test_over_two_effect_campaigns_a_wrong_loss_is_never_named_without_the_true_one_flagged():
+    """Two-effect band campaigns 360–719 that hide one loss with time beside another effect (186 of them): the twin
+    of the hidden loss is never named with the true loss left unflagged (5 of them before the re-formed law was
+    asked: 389, 413, 491, 536, 689), and a true loss named is flagged beside its twin in at most 1 in 10 (13 of 186
+    measured, 11 of them by the exchanged sets before: the data cannot tell a fraction of the clamp force from a
+    displacement there, which is no false name)."""
+    kinds = {k for k, (_, name) in EFFECTS.items() if name in LOSSES}
+    wrong, doubted, n = [], 0, 0
+    for i in range(360, 720):
+        effects, *_, data, _ = two_effect_data(i)
+        losses = [EFFECTS[e][1] for e in effects if e in kinds]
+        if len(losses) != 1:
+            continue
+        n += 1
+        d = diagnose(data)
+        named = {e["effect"] for e in d.effects}
+        flagged = {e for a in d.alternatives for e in a["effects"]}
+        truth, twin = losses[0], LOSSES[losses[0]]
+        if twin in named and truth not in named | flagged:
+            wrong.append(i)
+        doubted += truth in named and twin in flagged
+    assert n >= 150 and not wrong and doubted <= n / 10, (n, wrong, doubted)

@@ -47,7 +47,7 @@ from rollaway.identify.shape import (candidate_shapes, channel_alternatives, cha
                                      other_form_rivals, shape_rivals)
 from rollaway.identify.workers import fit_all
 from rollaway.identify.separating_test import tell_apart
-from rollaway.identify.twins import TWINS, twin_rival
+from rollaway.identify.twins import TWINS, loss_twin_rival, twin_rival
 from rollaway.identify.selection import (BIC_THRESHOLD, SCREEN_ITERATIONS, Candidate, cv_score, eliminate, exchange,
                                          folds, forward_step, has_per_test, per_test_signature, structure)
 from rollaway.uncertainty.bands import validity
@@ -283,8 +283,8 @@ def diagnose(data: Measurements, params=None, effects=None, *, noise_torque_Nm: 
         shape, misfit = loose_shape(selected[0], base, refined, loose, ev), "partial"
         channels = channel_rivals(data, refined, first_cands, drum.plan)
     rivalry = _rivals(selected, _same_drum(data, params, base, first_cands), base_cv, validity(full), nq)
-    named = {e for a in rivalry for e in a["effects"]}
-    twin = (twin_rival(data, params, refined, validity(full), nq.sigma, max(ess_inflation(refined).values()))
+    infl, named = max(ess_inflation(refined).values()), {e for a in rivalry for e in a["effects"]}
+    twin = (twin_rival(data, params, refined, validity(full), nq.sigma, infl)
             if len(selected) == 1 and not misfit and TWINS.get(selected[0]["effect"]) not in named else None)
     rivalry = ([twin] + rivalry)[:MAX_RIVALS] if twin else rivalry      # facing one way (rollaway.identify.twins)
     if (len(selected) == 1 and (selected[0]["form"] == "exact" or loose is not None) and not remaining
@@ -296,17 +296,18 @@ def diagnose(data: Measurements, params=None, effects=None, *, noise_torque_Nm: 
             a["tell_apart"] = tell_apart(refined, a["fit"], validity(full), nq.sigma)
             rivalry.append(a)
     if misfit and selected and len(rivalry) < MAX_RIVALS:      # the form is wrong: is the quantity known?
-        for a in channel_alternatives(refined, forms, channels, max(ess_inflation(refined).values())):
+        for a in channel_alternatives(refined, forms, channels, infl):
             if len(rivalry) < MAX_RIVALS and all(set(a["effects"]) != set(r["effects"]) for r in rivalry):
                 a["tell_apart"] = tell_apart(refined, a["fit"], validity(full), nq.sigma)
                 rivalry.append(a)
     if len(selected) == 1 and partner is not None:                # dropped beside a second term of the first's law
         rivalry = (_second_term_rival(steps, refined, pair_fit, validity(full), nq) + rivalry)[:MAX_RIVALS]
     if len(selected) >= 2 and not remaining:
-        rivalry = set_rivals(data, params, names, [e["effect"] for e in selected], refined,
-                             max(ess_inflation(refined).values()), SCREEN_ITERATIONS)
+        rivalry = set_rivals(data, params, names, [e["effect"] for e in selected], refined, infl, SCREEN_ITERATIONS)
         for a in rivalry:
             a["tell_apart"] = tell_apart(refined, a["fit"], validity(full), nq.sigma)
+    if verdict != "none":                      # a partner's form may pick the loss: rollaway.identify.twins
+        rivalry = loss_twin_rival(data, params, refined, first_cands, validity(full), nq.sigma, infl, rivalry)
     if verdict == "none" and remaining and not rivalry:
         shapes = candidate_shapes(data, first_cands, drum.plan, nq, nt)    # which quantity, whatever its form
         rivalry = closest(base, first_cands, base_cv, BIC_THRESHOLD, validity(full), nq.sigma, shapes)

@@ -55,6 +55,8 @@ def _fold(data, held, model, names, start, iterations):
         residual = _at(data.subset(rows), model, _globals(train.values))
     except (ValueError, np.linalg.LinAlgError):     # a fold the solver cannot take (too few residuals left, …)
         residual = None
+    if residual is not None and not np.all(np.isfinite(residual)):
+        residual = None                 # a refit that ran away (the model there has no finite prediction)
     return SimpleNamespace(data=None, rows=np.concatenate([rows, rows]), residual=residual)
 
 

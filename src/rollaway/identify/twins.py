@@ -1,4 +1,6 @@
-"""A friction law and a lining-modulus law on tests facing one way, compared with the shoe arm ratio free.
+"""Twin laws the data tell apart only through something they did not test or a partner's form.
+
+A friction law and a lining-modulus law on tests facing one way, compared with the shoe arm ratio free (:func:`twin_rival`).
 
 μ and E_l enter the torque together (eq. 17b: μ_d·r_d·A·E), and differ only through the self-energising factor
 k(μ, s) = l_f/(l_f − s·μ·l_fr) of eqs. (18)–(21), which a friction law changes with temperature and a modulus
@@ -16,6 +18,7 @@ verdict where the data then cannot tell them apart (BIC within
 from __future__ import annotations
 
 TWINS = {"friction_temperature": "modulus_temperature", "modulus_temperature": "friction_temperature"}
+LOSSES = {"lining_creep": "cable_relaxation", "cable_relaxation": "lining_creep"}
 ARM = "shoe_arm_ratio"
 
 
@@ -51,4 +54,68 @@ def twin_rival(data, params, verdict, tested: dict, noise_torque_Nm: float, infl
             "why": why, "fit": other, "tell_apart": tell_apart(verdict, other, tested, noise_torque_Nm)}
 
 
-__all__ = ["ARM", "TWINS", "twin_rival"]
+def loss_twin_rival(data, params, verdict, candidates, tested: dict, noise_torque_Nm: float, inflation: float = 1.0,
+                    rivalry=()) -> list[dict]:
+    """*rivalry* with the set that exchanges the verdict's loss with time for its twin (:data:`LOSSES`) first, where
+    *verdict* (a fit of two effects with the brake parameters of *params*) holds one loss beside another law and,
+    with that law re-formed (its hook as a linear spline, :func:`rollaway.identify.shape.flexible_effect`) in both,
+    the twin fits within :data:`~rollaway.identify.ambiguity.INDISTINGUISHABLE_BIC` of the loss or better, and the
+    held-out prediction does not prefer the loss beyond :func:`~rollaway.identify.ambiguity.preference_margin`.
+
+    A lining creep loses a fraction of the clamp force, a cable relaxation a displacement: the two differ only in
+    how the loss scales with hand force.  Beside a temperature law whose catalogue form is not the data's, that
+    law's misfit also falls with time as the drum cools and can be taken up by one loss better than by the other —
+    two-effect band campaign 389 (a quadratic friction law beside an exponential lining creep, one direction)
+    named the cable 14.7 BIC ahead; with the friction law re-formed, the creep leads by 13.4.  The exchanged set is
+    first fitted from the verdict's values and from the twin's own first-step fit (*candidates*), the better kept
+    (from the verdict's values alone the twin's size stays at zero).  The rival's fit is the twin beside the
+    re-formed law: in the bands it competes as the set the data do not rule out.  *rivalry* unchanged where there
+    is no such rival or it is already named."""
+    from rollaway.effects import available_effects, get_effect
+    from rollaway.identify.ambiguity import INDISTINGUISHABLE_BIC, MAX_RIVALS, heldout_difference, preference_margin
+    from rollaway.identify.selection import REFORM_ITERATIONS
+    from rollaway.identify.separating_test import tell_apart
+    from rollaway.identify.shape import covariate_of, flexible_effect, shape_hook
+    from rollaway.identify.workers import fit_all
+    effects, rivalry = list(getattr(verdict, "effects", ())), list(rivalry)
+    losses = [e for e in effects if e in LOSSES]
+    if (len(effects) != 2 or len(losses) != 1 or verdict.jacobian is None
+            or not all(e in available_effects() for e in effects)):        # a shape-free form is re-formed already
+        return rivalry
+    loss = losses[0]
+    law, twin = next(e for e in effects if e != loss), LOSSES[loss]
+    swap = [twin if e == loss else e for e in effects]
+    found = shape_hook(get_effect(law))
+    flex = None if found is None else flexible_effect(get_effect(law), covariate_of(verdict, found[1]))
+    if flex is None or any(set(a["effects"]) == set(swap) for a in rivalry):
+        return rivalry
+    alone = next((c.fit for c in candidates if c.effect == twin and c.fit is not None), None)
+    starts = [dict(verdict.values)] + ([{**alone.values, **{n: v for n, v in verdict.values.items()
+                                                           if n.startswith(law + ".")}}] if alone else [])
+    cat = min(fit_all(data, [(swap, params, dict(start=s)) for s in starts]), key=lambda f: f.bic)
+    mine, other = fit_all(data, [([flex if e == law else e for e in effects], params,
+                                  dict(start=verdict.values, max_iterations=REFORM_ITERATIONS)),
+                                 ([flex if e == law else e for e in swap], params,
+                                  dict(start=cat.values, max_iterations=REFORM_ITERATIONS))])
+    if mine.jacobian is None or other.jacobian is None:
+        return rivalry
+    k = max(inflation, 1.0)
+    dbic = (other.bic - mine.bic) / k
+    elpd, se = heldout_difference(mine, other)
+    margin = preference_margin(mine, se)
+    if dbic >= INDISTINGUISHABLE_BIC or elpd <= -margin:
+        return rivalry
+    behind = (cat.bic - verdict.bic) / k              # the exchanged set with the catalogue law (> 0: behind)
+    why = (f"with {law}'s form freed (a linear spline in {found[1]}) in both, {twin} fits "
+           + (f"better than {loss}" if dbic <= -INDISTINGUISHABLE_BIC else f"as well as {loss}") + f" (BIC {dbic:+.1f})"
+           + (f" where {law}'s catalogue law put {loss} {behind:.1f} ahead" if behind > 0 else
+              f", as with {law}'s catalogue law (BIC {behind:+.1f}, from a start the selection's exchange did not take)")
+           + ", and the held-out prediction " + (f"prefers {twin}" if elpd > margin else "does not prefer either")
+           + f" (Δ log score {elpd:+.1f} ± {se:.1f}): a clamp fraction and a cable displacement lost with time differ "
+           f"in how the loss scales with hand force, which {law}'s form can take up")
+    return ([{"kind": "rival", "effects": swap, "delta_bic": float(dbic), "heldout_elpd": elpd, "heldout_se": se,
+              "why": why, "fit": other, "verdict_effects": effects,
+              "tell_apart": tell_apart(verdict, other, tested, noise_torque_Nm)}] + rivalry)[:MAX_RIVALS]
+
+
+__all__ = ["ARM", "LOSSES", "TWINS", "loss_twin_rival", "twin_rival"]
