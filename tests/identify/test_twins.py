@@ -7,7 +7,7 @@ from types import SimpleNamespace
 import pytest
 
 from rollaway.identify.diagnose import diagnose
-from rollaway.identify.twins import ARM, LOSSES, TWINS, loss_twin_rival, twin_rival
+from rollaway.identify.twins import ARM, LOSSES, TWINS, law_twin_rival, loss_twin_rival, twin_rival
 from tests.identify.bench_generator import EFFECTS
 from tests.identify.heldout_names import campaign, judge
 from tests.uncertainty.band_questions import two_effect_data
@@ -71,6 +71,42 @@ def test_no_loss_twin_where_the_verdict_holds_no_loss_or_two_of_them():
     fit.effects = ["lining_creep"]
     assert loss_twin_rival(None, None, fit, [], {}, 8.0) == []
     assert LOSSES == {"lining_creep": "cable_relaxation", "cable_relaxation": "lining_creep"}
+
+
+def test_a_friction_fade_named_a_modulus_law_beside_another_effect_is_flagged_once_both_laws_are_re_formed():
+    """Two-effect band campaign 649: a friction fade above 150 °C beside a radiating drum, both directions.  The
+    catalogue's straight friction line bends the downhill/uphill ratio where the data show no change, and the
+    modulus law was named beside radiation with nothing about friction flagged; with both laws re-formed beside
+    radiation, friction fits better and is named beside the verdict, its fit the re-formed friction law."""
+    effects, *_, data, _ = two_effect_data(649)
+    assert set(effects) == {"friction_fade_above", "radiation"}
+    d = diagnose(data)
+    assert [e["effect"] for e in d.effects] == ["modulus_temperature", "radiation_cooling"], d.summary()
+    a = next(a for a in d.alternatives if "friction_temperature" in a["effects"])
+    assert set(a["effects"]) == {"friction_temperature", "radiation_cooling"} and a["delta_bic"] < 6.0
+    assert "both laws re-formed" in a["why"]
+    assert any(getattr(e, "name", "") == "friction_temperature_shape" for e in a["fit"].model.effects)
+
+
+def test_a_true_friction_law_beside_a_cable_gets_no_modulus_twin():
+    """Two-effect band campaign 0: a linear friction law (the catalogue's form) beside a cable relaxation, both
+    directions: re-formed, the modulus law is far behind (the downhill/uphill ratio tells them apart) and nothing is
+    flagged."""
+    effects, *_, data, _ = two_effect_data(0)
+    d = diagnose(data)
+    assert [e["effect"] for e in d.effects] == ["friction_temperature", "cable_relaxation"], d.summary()
+    assert not d.alternatives
+
+
+def test_no_law_twin_where_the_verdict_holds_no_law_or_both():
+    """A verdict without a friction or modulus law, with both, or of one effect: *rivalry* comes back as it was."""
+    fit = SimpleNamespace(effects=["lining_creep", "cable_relaxation"], jacobian=[[1.0]], values={})
+    kept = [{"effects": ["x"]}]
+    assert law_twin_rival(None, None, fit, [], {}, 8.0, rivalry=kept) == kept
+    fit.effects = ["friction_temperature", "modulus_temperature"]
+    assert law_twin_rival(None, None, fit, [], {}, 8.0, rivalry=kept) == kept
+    fit.effects = ["friction_temperature"]
+    assert law_twin_rival(None, None, fit, [], {}, 8.0) == []
 
 
 @SLOW

@@ -47,7 +47,7 @@ from rollaway.identify.shape import (candidate_shapes, channel_alternatives, cha
                                      other_form_rivals, shape_rivals)
 from rollaway.identify.workers import fit_all
 from rollaway.identify.separating_test import tell_apart
-from rollaway.identify.twins import TWINS, loss_twin_rival, twin_rival
+from rollaway.identify.twins import TWINS, law_twin_rival, loss_twin_rival, twin_rival
 from rollaway.identify.selection import (BIC_THRESHOLD, SCREEN_ITERATIONS, Candidate, cv_score, eliminate, exchange,
                                          folds, forward_step, has_per_test, per_test_signature, structure)
 from rollaway.uncertainty.bands import validity
@@ -306,8 +306,8 @@ def diagnose(data: Measurements, params=None, effects=None, *, noise_torque_Nm: 
         rivalry = set_rivals(data, params, names, [e["effect"] for e in selected], refined, infl, SCREEN_ITERATIONS)
         for a in rivalry:
             a["tell_apart"] = tell_apart(refined, a["fit"], validity(full), nq.sigma)
-    if verdict != "none":                      # a partner's form may pick the loss: rollaway.identify.twins
-        rivalry = loss_twin_rival(data, params, refined, first_cands, validity(full), nq.sigma, infl, rivalry)
+    for twin_of in (law_twin_rival, loss_twin_rival) if verdict != "none" else ():   # rollaway.identify.twins
+        rivalry = twin_of(data, params, refined, first_cands, validity(full), nq.sigma, infl, rivalry)
     if verdict == "none" and remaining and not rivalry:
         shapes = candidate_shapes(data, first_cands, drum.plan, nq, nt)    # which quantity, whatever its form
         rivalry = closest(base, first_cands, base_cv, BIC_THRESHOLD, validity(full), nq.sigma, shapes)

@@ -1,6 +1,8 @@
 """Twin laws the data tell apart only through something they did not test or a partner's form.
 
-A friction law and a lining-modulus law on tests facing one way, compared with the shoe arm ratio free (:func:`twin_rival`).
+A friction law and a lining-modulus law on tests facing one way, compared with the shoe arm ratio free
+(:func:`twin_rival`); the same two laws beside another effect, each re-formed (:func:`law_twin_rival`); a lining
+creep and a cable relaxation beside a law whose form is not the catalogue's (:func:`loss_twin_rival`).
 
 μ and E_l enter the torque together (eq. 17b: μ_d·r_d·A·E), and differ only through the self-energising factor
 k(μ, s) = l_f/(l_f − s·μ·l_fr) of eqs. (18)–(21), which a friction law changes with temperature and a modulus
@@ -72,8 +74,7 @@ def loss_twin_rival(data, params, verdict, candidates, tested: dict, noise_torqu
     re-formed law: in the bands it competes as the set the data do not rule out.  *rivalry* unchanged where there
     is no such rival or it is already named."""
     from rollaway.effects import available_effects, get_effect
-    from rollaway.identify.ambiguity import INDISTINGUISHABLE_BIC, MAX_RIVALS, heldout_difference, preference_margin
-    from rollaway.identify.selection import REFORM_ITERATIONS
+    from rollaway.identify.ambiguity import INDISTINGUISHABLE_BIC, MAX_RIVALS
     from rollaway.identify.separating_test import tell_apart
     from rollaway.identify.shape import covariate_of, flexible_effect, shape_hook
     from rollaway.identify.workers import fit_all
@@ -93,19 +94,12 @@ def loss_twin_rival(data, params, verdict, candidates, tested: dict, noise_torqu
     starts = [dict(verdict.values)] + ([{**alone.values, **{n: v for n, v in verdict.values.items()
                                                            if n.startswith(law + ".")}}] if alone else [])
     cat = min(fit_all(data, [(swap, params, dict(start=s)) for s in starts]), key=lambda f: f.bic)
-    mine, other = fit_all(data, [([flex if e == law else e for e in effects], params,
-                                  dict(start=verdict.values, max_iterations=REFORM_ITERATIONS)),
-                                 ([flex if e == law else e for e in swap], params,
-                                  dict(start=cat.values, max_iterations=REFORM_ITERATIONS))])
-    if mine.jacobian is None or other.jacobian is None:
+    got = _compared(data, params, [flex if e == law else e for e in effects], verdict.values,
+                    [flex if e == law else e for e in swap], cat.values, inflation)
+    if got is None:
         return rivalry
-    k = max(inflation, 1.0)
-    dbic = (other.bic - mine.bic) / k
-    elpd, se = heldout_difference(mine, other)
-    margin = preference_margin(mine, se)
-    if dbic >= INDISTINGUISHABLE_BIC or elpd <= -margin:
-        return rivalry
-    behind = (cat.bic - verdict.bic) / k              # the exchanged set with the catalogue law (> 0: behind)
+    other, dbic, elpd, se, margin = got
+    behind = (cat.bic - verdict.bic) / max(inflation, 1.0)   # the exchanged set with the catalogue law (> 0: behind)
     why = (f"with {law}'s form freed (a linear spline in {found[1]}) in both, {twin} fits "
            + (f"better than {loss}" if dbic <= -INDISTINGUISHABLE_BIC else f"as well as {loss}") + f" (BIC {dbic:+.1f})"
            + (f" where {law}'s catalogue law put {loss} {behind:.1f} ahead" if behind > 0 else
@@ -118,4 +112,77 @@ def loss_twin_rival(data, params, verdict, candidates, tested: dict, noise_torqu
               "tell_apart": tell_apart(verdict, other, tested, noise_torque_Nm)}] + rivalry)[:MAX_RIVALS]
 
 
-__all__ = ["ARM", "LOSSES", "TWINS", "loss_twin_rival", "twin_rival"]
+def law_twin_rival(data, params, verdict, candidates, tested: dict, noise_torque_Nm: float, inflation: float = 1.0,
+                   rivalry=()) -> list[dict]:
+    """*rivalry* with the set that exchanges the verdict's friction or modulus law for its twin (:data:`TWINS`)
+    first, where *verdict* (a fit of two effects with the brake parameters of *params*) holds one of them beside an
+    effect of another kind and, with each law re-formed (its hook as a linear spline along its covariate) beside
+    that effect, the twin fits within :data:`~rollaway.identify.ambiguity.INDISTINGUISHABLE_BIC` of the verdict's
+    law or better, and the held-out prediction does not prefer the verdict's beyond
+    :func:`~rollaway.identify.ambiguity.preference_margin`.
+
+    The two laws differ through the downhill/uphill ratio (a friction law bends the self-energising factor, a
+    modulus law does not); a friction change confined to part of the tested temperatures (a fade above 150 °C)
+    written as the catalogue's straight line bends that ratio where the data show no change, and the modulus law,
+    which has no such signature, fits better — two-effect band campaign 649 (a fade beside a radiating drum, both
+    directions) named `modulus_temperature + radiation_cooling`; re-formed, the friction law is 79.7 BIC ahead.
+    The twin's set starts from the twin's own first-step fit (*candidates*) with the other effect's values of
+    *verdict*.  The rival's fit is the re-formed twin beside the other effect.  *rivalry* unchanged where there is
+    no such rival or it is already named."""
+    from rollaway.effects import available_effects, get_effect
+    from rollaway.identify.ambiguity import INDISTINGUISHABLE_BIC, MAX_RIVALS
+    from rollaway.identify.separating_test import tell_apart
+    from rollaway.identify.shape import covariate_of, flexible_effect, shape_hook
+    effects, rivalry = list(getattr(verdict, "effects", ())), list(rivalry)
+    laws = [e for e in effects if e in TWINS]
+    if (len(effects) != 2 or len(laws) != 1 or verdict.jacobian is None
+            or not all(e in available_effects() for e in effects)):
+        return rivalry
+    law = laws[0]
+    other, twin = next(e for e in effects if e != law), TWINS[law]
+    swap = [twin if e == law else e for e in effects]
+    found = [shape_hook(get_effect(n)) for n in (law, twin)]
+    flex = [None if f is None else flexible_effect(get_effect(n), covariate_of(verdict, f[1]))
+            for n, f in zip((law, twin), found)]
+    if None in flex or any(set(a["effects"]) == set(swap) for a in rivalry):
+        return rivalry
+    alone = next((c.fit for c in candidates if c.effect == twin and c.fit is not None), None)
+    start = {**(alone.values if alone else verdict.values),
+             **{n: v for n, v in verdict.values.items() if n.startswith(other + ".")}}
+    got = _compared(data, params, [flex[0] if e == law else e for e in effects], verdict.values,
+                    [flex[1] if e == law else e for e in effects], start, inflation)
+    if got is None:
+        return rivalry
+    fit, dbic, elpd, se, margin = got
+    why = (f"with both laws re-formed (linear splines in {found[0][1]}) beside {other}, {twin} fits "
+           + (f"better than {law}" if dbic <= -INDISTINGUISHABLE_BIC else f"as well as {law}") + f" (BIC {dbic:+.1f})"
+           + ", and the held-out prediction " + (f"prefers {twin}" if elpd > margin else "does not prefer either")
+           + f" (Δ log score {elpd:+.1f} ± {se:.1f}): the catalogue's straight line in temperature decided between "
+           f"them, not the downhill/uphill ratio that tells a friction law from a modulus law")
+    return ([{"kind": "rival", "effects": swap, "delta_bic": float(dbic), "heldout_elpd": elpd, "heldout_se": se,
+              "why": why, "fit": fit, "verdict_effects": effects,
+              "tell_apart": tell_apart(verdict, fit, tested, noise_torque_Nm)}] + rivalry)[:MAX_RIVALS]
+
+
+def _compared(data, params, mine: list, mine_start: dict, theirs: list, theirs_start: dict, inflation: float):
+    """*mine* and *theirs* (effect lists, shape-free forms among them) fitted from their starts with a re-formed
+    fit's budget: (their fit, ΔBIC theirs − mine divided by *inflation*, held-out difference, its standard error,
+    the preference margin), or None where a fit fails or *theirs* is ruled out (ΔBIC beyond
+    :data:`~rollaway.identify.ambiguity.INDISTINGUISHABLE_BIC`, or the held-out prediction prefers *mine* beyond
+    the margin)."""
+    from rollaway.identify.ambiguity import INDISTINGUISHABLE_BIC, heldout_difference, preference_margin
+    from rollaway.identify.selection import REFORM_ITERATIONS
+    from rollaway.identify.workers import fit_all
+    a, b = fit_all(data, [(mine, params, dict(start=mine_start, max_iterations=REFORM_ITERATIONS)),
+                          (theirs, params, dict(start=theirs_start, max_iterations=REFORM_ITERATIONS))])
+    if a.jacobian is None or b.jacobian is None:
+        return None
+    dbic = (b.bic - a.bic) / max(inflation, 1.0)
+    elpd, se = heldout_difference(a, b)
+    margin = preference_margin(a, se)
+    if dbic >= INDISTINGUISHABLE_BIC or elpd <= -margin:
+        return None
+    return b, dbic, elpd, se, margin
+
+
+__all__ = ["ARM", "LOSSES", "TWINS", "law_twin_rival", "loss_twin_rival", "twin_rival"]
