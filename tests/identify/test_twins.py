@@ -61,18 +61,6 @@ def test_a_loss_a_partner_law_s_form_picked_is_flagged_beside_its_twin(index, na
     assert any(getattr(e, "name", "").endswith("_shape") for e in a["fit"].model.effects)
 
 
-def test_no_loss_twin_where_the_verdict_holds_no_loss_or_two_of_them():
-    """A verdict without a loss with time, with both losses, or of one effect: *rivalry* comes back as it was."""
-    fit = SimpleNamespace(effects=["friction_temperature", "modulus_temperature"], jacobian=[[1.0]], values={})
-    kept = [{"effects": ["x"]}]
-    assert loss_twin_rival(None, None, fit, [], {}, 8.0, rivalry=kept) == kept
-    fit.effects = ["lining_creep", "cable_relaxation"]
-    assert loss_twin_rival(None, None, fit, [], {}, 8.0, rivalry=kept) == kept
-    fit.effects = ["lining_creep"]
-    assert loss_twin_rival(None, None, fit, [], {}, 8.0) == []
-    assert LOSSES == {"lining_creep": "cable_relaxation", "cable_relaxation": "lining_creep"}
-
-
 def test_a_friction_fade_named_a_modulus_law_beside_another_effect_is_flagged_once_both_laws_are_re_formed():
     """Two-effect band campaign 649: a friction fade above 150 °C beside a radiating drum, both directions.  The
     catalogue's straight friction line bends the downhill/uphill ratio where the data show no change, and the
@@ -98,15 +86,19 @@ def test_a_true_friction_law_beside_a_cable_gets_no_modulus_twin():
     assert not d.alternatives
 
 
-def test_no_law_twin_where_the_verdict_holds_no_law_or_both():
-    """A verdict without a friction or modulus law, with both, or of one effect: *rivalry* comes back as it was."""
-    fit = SimpleNamespace(effects=["lining_creep", "cable_relaxation"], jacobian=[[1.0]], values={})
+@pytest.mark.parametrize("rule, kinds", [(loss_twin_rival, ("lining_creep", "cable_relaxation")),
+                                         (law_twin_rival, ("friction_temperature", "modulus_temperature"))])
+def test_no_twin_where_the_verdict_holds_neither_twin_or_both_or_one_effect(rule, kinds):
+    """A verdict with neither of the two twins, with both, or of one effect: *rivalry* comes back as it was."""
+    other = [e for e in ("lining_creep", "cable_relaxation", "friction_temperature") if e not in kinds][:1]
+    fit = SimpleNamespace(effects=other + ["radiation_cooling"], jacobian=[[1.0]], values={})
     kept = [{"effects": ["x"]}]
-    assert law_twin_rival(None, None, fit, [], {}, 8.0, rivalry=kept) == kept
-    fit.effects = ["friction_temperature", "modulus_temperature"]
-    assert law_twin_rival(None, None, fit, [], {}, 8.0, rivalry=kept) == kept
-    fit.effects = ["friction_temperature"]
-    assert law_twin_rival(None, None, fit, [], {}, 8.0) == []
+    assert rule(None, None, fit, [], {}, 8.0, rivalry=kept) == kept
+    fit.effects = list(kinds)
+    assert rule(None, None, fit, [], {}, 8.0, rivalry=kept) == kept
+    fit.effects = [kinds[0]]
+    assert rule(None, None, fit, [], {}, 8.0) == []
+    assert LOSSES == {"lining_creep": "cable_relaxation", "cable_relaxation": "lining_creep"}
 
 
 @SLOW

@@ -74,8 +74,7 @@ def loss_twin_rival(data, params, verdict, candidates, tested: dict, noise_torqu
     re-formed law: in the bands it competes as the set the data do not rule out.  *rivalry* unchanged where there
     is no such rival or it is already named."""
     from rollaway.effects import available_effects, get_effect
-    from rollaway.identify.ambiguity import INDISTINGUISHABLE_BIC, MAX_RIVALS
-    from rollaway.identify.separating_test import tell_apart
+    from rollaway.identify.ambiguity import INDISTINGUISHABLE_BIC
     from rollaway.identify.shape import covariate_of, flexible_effect, shape_hook
     from rollaway.identify.workers import fit_all
     effects, rivalry = list(getattr(verdict, "effects", ())), list(rivalry)
@@ -107,9 +106,7 @@ def loss_twin_rival(data, params, verdict, candidates, tested: dict, noise_torqu
            + ", and the held-out prediction " + (f"prefers {twin}" if elpd > margin else "does not prefer either")
            + f" (Δ log score {elpd:+.1f} ± {se:.1f}): a clamp fraction and a cable displacement lost with time differ "
            f"in how the loss scales with hand force, which {law}'s form can take up")
-    return ([{"kind": "rival", "effects": swap, "delta_bic": float(dbic), "heldout_elpd": elpd, "heldout_se": se,
-              "why": why, "fit": other, "verdict_effects": effects,
-              "tell_apart": tell_apart(verdict, other, tested, noise_torque_Nm)}] + rivalry)[:MAX_RIVALS]
+    return _named_first(rivalry, swap, other, (dbic, elpd, se), why, verdict, tested, noise_torque_Nm)
 
 
 def law_twin_rival(data, params, verdict, candidates, tested: dict, noise_torque_Nm: float, inflation: float = 1.0,
@@ -130,8 +127,7 @@ def law_twin_rival(data, params, verdict, candidates, tested: dict, noise_torque
     *verdict*.  The rival's fit is the re-formed twin beside the other effect.  *rivalry* unchanged where there is
     no such rival or it is already named."""
     from rollaway.effects import available_effects, get_effect
-    from rollaway.identify.ambiguity import INDISTINGUISHABLE_BIC, MAX_RIVALS
-    from rollaway.identify.separating_test import tell_apart
+    from rollaway.identify.ambiguity import INDISTINGUISHABLE_BIC
     from rollaway.identify.shape import covariate_of, flexible_effect, shape_hook
     effects, rivalry = list(getattr(verdict, "effects", ())), list(rivalry)
     laws = [e for e in effects if e in TWINS]
@@ -159,8 +155,19 @@ def law_twin_rival(data, params, verdict, candidates, tested: dict, noise_torque
            + ", and the held-out prediction " + (f"prefers {twin}" if elpd > margin else "does not prefer either")
            + f" (Δ log score {elpd:+.1f} ± {se:.1f}): the catalogue's straight line in temperature decided between "
            f"them, not the downhill/uphill ratio that tells a friction law from a modulus law")
-    return ([{"kind": "rival", "effects": swap, "delta_bic": float(dbic), "heldout_elpd": elpd, "heldout_se": se,
-              "why": why, "fit": fit, "verdict_effects": effects,
+    return _named_first(rivalry, swap, fit, (dbic, elpd, se), why, verdict, tested, noise_torque_Nm)
+
+
+def _named_first(rivalry: list, effects: list, fit, evidence: tuple, why: str, verdict, tested: dict,
+                 noise_torque_Nm: float) -> list[dict]:
+    """*rivalry* with the rival set *effects* (its *fit*, *evidence* = (ΔBIC, held-out difference, its standard
+    error), *why*) first, and the test that would tell it from *verdict*; at most
+    :data:`~rollaway.identify.ambiguity.MAX_RIVALS`."""
+    from rollaway.identify.ambiguity import MAX_RIVALS
+    from rollaway.identify.separating_test import tell_apart
+    dbic, elpd, se = evidence
+    return ([{"kind": "rival", "effects": effects, "delta_bic": float(dbic), "heldout_elpd": elpd, "heldout_se": se,
+              "why": why, "fit": fit, "verdict_effects": list(verdict.effects),
               "tell_apart": tell_apart(verdict, fit, tested, noise_torque_Nm)}] + rivalry)[:MAX_RIVALS]
 
 
