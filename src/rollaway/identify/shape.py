@@ -283,14 +283,17 @@ def channel_alternatives(fit, forms, channels, inflation: float = 1.0) -> list[d
         mine, other = own[k[0]], getattr(c.model.effects[k[0]], "base", c.model.effects[k[0]].name)
         dbic = (c.bic - mine.bic) / max(inflation, 1.0)
         elpd, se = heldout_difference(mine, c)
-        if dbic >= INDISTINGUISHABLE_BIC or elpd <= -preference_margin(mine, se):
+        margin = preference_margin(mine, se)
+        if dbic >= INDISTINGUISHABLE_BIC or elpd <= -margin:
             continue
         effects = names[:k[0]] + [other] + names[k[0] + 1:]
         out.append({"kind": "rival", "form": "shape-free", "channel": True, "effects": effects,
                     "delta_bic": float(dbic), "heldout_elpd": elpd, "heldout_se": se, "fit": c,
                     "why": (f"with a spline in {c.model.effects[k[0]].covariate} in place of {names[k[0]]}'s form, "
-                            f"{other} fits as well as {names[k[0]]} (BIC {dbic:+.1f}) and the held-out prediction does "
-                            f"not prefer either (Δ log score {elpd:+.1f} ± {se:.1f}): the data say that something "
+                            f"{other} fits {'better than' if dbic <= -INDISTINGUISHABLE_BIC else 'as well as'} "
+                            f"{names[k[0]]} (BIC {dbic:+.1f}) and the held-out prediction "
+                            f"{'prefers ' + other if elpd > margin else 'does not prefer either'} "
+                            f"(Δ log score {elpd:+.1f} ± {se:.1f}): the data say that something "
                             f"changes with {c.model.effects[k[0]].covariate}, not which quantity")})
     return sorted(out, key=lambda a: a["delta_bic"])
 
