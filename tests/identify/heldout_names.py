@@ -5,11 +5,17 @@ alternatives, partner effects (a second effect named where one is hidden), struc
 
     PYTHONPATH=src python -m tests.identify.heldout_names --sets 60
     PYTHONPATH=src python -m tests.identify.heldout_names --sets 72 --rotated    # every kind in every setting
+    PYTHONPATH=src python -m tests.identify.heldout_names --sets 72 --two        # two hidden effects a campaign
+
+With ``--two`` the campaigns are :func:`tests.uncertainty.band_questions.two_effect_data`'s: right is the verdict's
+set of effects equal to the hidden pair's; a false name is an effect named that is not hidden, with no flagged
+alternative made of hidden effects only.
 """
 from __future__ import annotations
 
 import argparse
 import time
+from pathlib import Path
 
 import numpy as np
 
@@ -61,15 +67,35 @@ def judge(hidden, d) -> dict:
             "verdict": d.verdict, "effects": named, "alternatives": sorted(alts)}
 
 
-def run(sets: int, start: int = 0, rotated: bool = False) -> list[dict]:
+def judge_two(hidden: list, d) -> dict:
+    """Of one diagnosis of two hidden effects: right (the verdict's set is the pair's, or a flagged alternative's
+    is), a false name (an effect named that is not hidden) and whether an alternative of hidden effects only flags
+    it."""
+    true = set().union(*({EFFECTS[h][1]} | EQUIVALENT.get(h, set()) for h in hidden)) - {None}
+    pair = {EFFECTS[h][1] for h in hidden} - {None}
+    named = {e["effect"] for e in d.effects}
+    alts = [set(a["effects"]) for a in getattr(d, "alternatives", [])]
+    false = sorted(named - true)
+    return {"right": named == pair, "right_or_alternative": named == pair or any(a == pair for a in alts),
+            "false": false, "false_unflagged": bool(false) and not any(a and a <= true for a in alts),
+            "ambiguous": bool(alts), "structure": bool(d.remaining_structure), "verdict": d.verdict,
+            "effects": sorted(named), "alternatives": [sorted(a) for a in alts]}
+
+
+def run(sets: int, start: int = 0, rotated: bool = False, two: bool = False) -> list[dict]:
     from rollaway.identify.diagnose import diagnose
+    from tests.uncertainty.band_questions import two_effect_data
     rows = []
     for i in range(start, start + sets):
-        hidden, data = (rotated_campaign if rotated else campaign)(i)
+        if two:
+            got = two_effect_data(i)
+            hidden, data = [str(e) for e in got[0]], got[5]
+        else:
+            hidden, data = (rotated_campaign if rotated else campaign)(i)
         t = time.perf_counter()
         d = diagnose(data)
         rows.append({"i": i, "hidden": hidden, "rows": len(data), "seconds": time.perf_counter() - t,
-                     **judge(hidden, d)})
+                     **(judge_two if two else judge)(hidden, d)})
     return rows
 
 
@@ -77,7 +103,8 @@ def summary(rows: list[dict]) -> dict:
     n = len(rows)
     sec = np.array([r["seconds"] for r in rows])
     return {"sets": n, "right": sum(r["right"] for r in rows), "right_or_alternative":
-            sum(r["right_or_alternative"] for r in rows), "partner": sum(r["partner"] for r in rows),
+            sum(r["right_or_alternative"] for r in rows), "partner": sum(r.get("partner", 0) for r in rows),
+            "false_unflagged": sum(r.get("false_unflagged", 0) for r in rows),
             "ambiguous": sum(r["ambiguous"] for r in rows), "structure": sum(r["structure"] for r in rows),
             "seconds_median": float(np.median(sec)), "seconds_max": float(sec.max())}
 
@@ -87,10 +114,15 @@ def main(argv=None):
     ap.add_argument("--sets", type=int, default=60)
     ap.add_argument("--start", type=int, default=0)
     ap.add_argument("--rotated", action="store_true", help="every hidden kind in every setting (rotated_campaign)")
+    ap.add_argument("--two", action="store_true", help="two hidden effects a campaign (band_questions.two_effect_data)")
+    ap.add_argument("--json", help="write every campaign's row to this file")
     a = ap.parse_args(argv)
-    rows = run(a.sets, a.start, a.rotated)
+    rows = run(a.sets, a.start, a.rotated, a.two)
+    if a.json:
+        import json
+        Path(a.json).write_text(json.dumps(rows))
     for r in rows:
-        if not r["right_or_alternative"] or r["partner"]:
+        if not r["right_or_alternative"] or r.get("partner") or r.get("false_unflagged"):
             print(f"  {r['i']}: {r['hidden']} → {r['verdict']} {r['effects']} alt {r['alternatives']} "
                   f"structure={r['structure']}")
     print(summary(rows))

@@ -41,7 +41,7 @@ from rollaway.bench.measurements import Measurements
 from rollaway.bench.noise import Noise, noise_estimate, sample_sigma
 from rollaway.identify.detection import detection_limits, hidden_shifts, hidden_words, limits_words
 from rollaway.identify.diagnose_words import describe_residual, no_candidate_words, noise_words, structure_words
-from rollaway.identify.partner import beside_partial, own_evidence, stood_for
+from rollaway.identify.partner import beside_partial, own_evidence, stood_for, unsure_second
 from rollaway.identify.predictive_set import attach_predictive, interval_words
 from rollaway.identify.shape import (candidate_shapes, channel_alternatives, channel_rivals, loose_form, pair_shapes,
                                      other_form_rivals, shape_rivals)
@@ -262,11 +262,11 @@ def diagnose(data: Measurements, params=None, effects=None, *, noise_torque_Nm: 
             other = (beside_partial(data, params, name, refined, names, drum.departures())
                      if len(chosen) == 1 and max_effects > 1 else None)
             if other is not None:                   # a second effect beside the partial one, on its own evidence
-                second, refined, dbic, pref = other
+                second, refined, dbic, pref, reform = other
                 selected.append({"effect": second, "form": "exact"})
                 struct = structure(refined, nq, nt)
                 steps.append({"step": "beside the partial first", "effect": second, "delta_bic": dbic,
-                              "heldout": pref})
+                              "heldout": pref, "first": name, "reform": reform})
                 ev.append(f"Beside {name} re-formed, {second} lowers BIC by {-dbic:.1f} and predicts held-out "
                           f"tests better (log score {pref['heldout_elpd']:+.1f} ± {pref['heldout_se']:.1f}, "
                           f"better in {pref['better_tests']} of {pref['tests']} tests, worse in "
@@ -306,7 +306,7 @@ def diagnose(data: Measurements, params=None, effects=None, *, noise_torque_Nm: 
         rivalry = set_rivals(data, params, names, [e["effect"] for e in selected], refined, infl, SCREEN_ITERATIONS)
         for a in rivalry:
             a["tell_apart"] = tell_apart(refined, a["fit"], validity(full), nq.sigma)
-    for twin_of in (law_twin_rival, loss_twin_rival) if verdict != "none" else ():   # rollaway.identify.twins
+    for twin_of in (law_twin_rival, loss_twin_rival, unsure_second(steps)) if verdict != "none" else ():
         rivalry = twin_of(data, params, refined, first_cands, validity(full), nq.sigma, infl, rivalry)
     if verdict == "none" and remaining and not rivalry:
         shapes = candidate_shapes(data, first_cands, drum.plan, nq, nt)    # which quantity, whatever its form

@@ -79,8 +79,9 @@ def own_evidence(data, params, chosen, current, struct, fits, nq, nt, steps, ev,
                                                     refree + departures):
         other = None
     if other is not None:
-        name, pair, dbic, pref = other
-        steps.append({"step": "beside the re-formed first", "effect": name, "delta_bic": dbic, "heldout": pref})
+        name, pair, dbic, pref, reform = other
+        steps.append({"step": "beside the re-formed first", "effect": name, "delta_bic": dbic, "heldout": pref,
+                      "first": chosen[0], "reform": reform})
         ev.append(f"{chosen[1]} is not beyond {chosen[0]} re-formed, but beside {chosen[0]} re-formed (its hook as a "
                   f"linear spline) {name} lowers BIC by {-dbic:.1f} and predicts held-out tests better (log score "
                   f"{pref['heldout_elpd']:+.1f} ± {pref['heldout_se']:.1f}, better in {pref['better_tests']} of "
@@ -177,7 +178,7 @@ def beside_reformed(data, params, first: str, first_fit: FitResult, names, refor
     if got is memo.ABSENT:
         got = _beside_reformed(data, params, first, first_fit, names, reform, departures)
         memo.remember(tag, k, got)
-    return None if got is None else (got[0], memo.copy_fit(got[1]), got[2], dict(got[3]))
+    return None if got is None else (got[0], memo.copy_fit(got[1]), got[2], dict(got[3]), memo.copy_fit(got[4]))
 
 
 def _beside_reformed(data, params, first: str, first_fit: FitResult, names, reform=None, departures=()):
@@ -192,7 +193,7 @@ def _beside_reformed(data, params, first: str, first_fit: FitResult, names, refo
     Sought whether or not the re-formed first leaves structure.  *departures*: the brake parameters the caller
     frees next in :func:`_beside_departures`; its fits run beside the second term's (kept by
     :mod:`rollaway.identify.memo`).
-    Returns (name, the catalogue pair's fit, ΔBIC, held-out comparison) or None."""
+    Returns (name, the catalogue pair's fit, ΔBIC, held-out comparison, the re-formed first's fit) or None."""
     from rollaway.effects import get_effect
     job = _reform_job(params, first, first_fit)
     if job is None:
@@ -223,7 +224,7 @@ def _beside_reformed(data, params, first: str, first_fit: FitResult, names, refo
                               also=_departure_jobs(params, first, first_fit, name, pair, departures))
     if term is not None and not term["passes"]:
         return None
-    return name, pair, float(both.bic - reform.bic), pref
+    return name, pair, float(both.bic - reform.bic), pref, reform
 
 
 def _all_but(params, flex, name: str) -> list[str]:
@@ -251,3 +252,37 @@ def _own_reform_job(params, name: str, both: FitResult):
     found = shape_hook(get_effect(name))
     flex = None if found is None else flexible_effect(get_effect(name), covariate_of(both, found[1]))
     return None if flex is None else ([flex], params, dict(start=both.values, max_iterations=REFORM_ITERATIONS))
+
+
+def unsure_second(steps: list[dict]):
+    """A rule for :func:`rollaway.identify.diagnose.diagnose`, called as the twin rules are
+    (:mod:`rollaway.identify.twins`): where a verdict of two effects named its second beside the first re-formed
+    (:func:`own_evidence`'s step "beside the re-formed first", or "beside the partial first") on a held-out gain
+    within :data:`~rollaway.identify.ambiguity.HELDOUT_SE` standard errors of the paired difference, the first
+    re-formed alone (its hook as a linear spline) is named beside the verdict while fewer than
+    :data:`~rollaway.identify.ambiguity.MAX_RIVALS` are: the second passed the naming rule, but the held-out tests
+    do not rule out that one mis-formed effect is all there is (a sigmoid modulus drop beside an installation gap
+    named a friction change at 1.4 standard errors, two-effect campaign 339 of
+    ``tests/uncertainty/band_questions.py``).  Its fit in the bands is the re-formed first."""
+    def rival(data, params, verdict, first_cands, tested: dict, noise_torque_Nm: float, inflation: float,
+              rivalry: list[dict]) -> list[dict]:
+        from rollaway.identify.ambiguity import HELDOUT_SE, MAX_RIVALS
+        from rollaway.identify.separating_test import tell_apart
+        names = [e.name for e in verdict.model.effects]
+        step = next((s for s in steps if s.get("step") in ("beside the re-formed first", "beside the partial first")
+                     and s.get("reform") is not None and sorted(names) == sorted([s["first"], s["effect"]])), None)
+        if step is None or len(rivalry) >= MAX_RIVALS or any(a["effects"] == [step["first"]] for a in rivalry):
+            return rivalry
+        pref, reform = step["heldout"], step["reform"]
+        if reform.jacobian is None or not pref["heldout_elpd"] < HELDOUT_SE * pref["heldout_se"]:
+            return rivalry
+        return rivalry + [{
+            "kind": "rival", "form": "shape-free", "effects": [step["first"]], "fit": reform,
+            "delta_bic": float(-step["delta_bic"]), "heldout_elpd": -float(pref["heldout_elpd"]),
+            "heldout_se": float(pref["heldout_se"]),
+            "why": (f"{step['effect']} is named beside {step['first']} re-formed on a held-out gain within "
+                    f"{HELDOUT_SE:g} standard errors (log score {pref['heldout_elpd']:+.1f} ± {pref['heldout_se']:.1f}, "
+                    f"better in {pref['better_tests']} of {pref['tests']} tests): {step['first']} alone, its hook as "
+                    f"a linear spline, is not ruled out"),
+            "tell_apart": tell_apart(verdict, reform, tested, noise_torque_Nm)}]
+    return rival
