@@ -263,7 +263,10 @@ def unsure_second(steps: list[dict]):
     :data:`~rollaway.identify.ambiguity.MAX_RIVALS` are: the second passed the naming rule, but the held-out tests
     do not rule out that one mis-formed effect is all there is (a sigmoid modulus drop beside an installation gap
     named a friction change at 1.4 standard errors, two-effect campaign 339 of
-    ``tests/uncertainty/band_questions.py``).  Its fit in the bands is the re-formed first."""
+    ``tests/uncertainty/band_questions.py``).  Its fit in the bands is the re-formed first.  Only a second found
+    beside the re-formed first: it is the best of every catalogue effect screened there, a choice its held-out
+    score does not count, and the first's catalogue form was already found wrong (on the 360 two-effect band
+    campaigns 0–359, 1 of 38 such seconds was false, against 1 of 81 named by the forward steps, that one flagged)."""
     def rival(data, params, verdict, first_cands, tested: dict, noise_torque_Nm: float, inflation: float,
               rivalry: list[dict]) -> list[dict]:
         from rollaway.identify.ambiguity import HELDOUT_SE, MAX_RIVALS
