@@ -139,6 +139,11 @@ def test_report_text_json_and_model_file_carry_the_identifiability(tmp_path):
     assert "Your drum" in text and "not tested" in text and "shoe_arm_ratio" in text
     js = dg.as_dict()["drum"]["parameters"]
     assert js["shoe_arm_ratio"]["status"] == "not tested" and js["mu_drum"]["status"] == "fitted"
+    held = dg.as_dict()["refined"]["held"]          # a held parameter keeps its assumed spread as its interval
+    assert js["shoe_arm_ratio"]["ci95_from"] == "assumed spread" and js["mu_drum"]["ci95_from"] == "fit"
+    assert held["shoe_arm_ratio"]["ci95"] == js["shoe_arm_ratio"]["ci95"] and "mu_drum" not in held
+    lo, hi = held["shoe_arm_ratio"]["ci95"]
+    assert lo < 0.06 / 0.08 < hi and "95 % [" in text
     path = dg.save_model(tmp_path / "m.toml")
     model = load_model(path)
     assert model.calibration["shoe_arm_ratio"].startswith("not tested")

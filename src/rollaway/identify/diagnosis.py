@@ -70,7 +70,8 @@ class Diagnosis(CalibratedModelMixin):
                                  for a in self.alternatives],
                 "effects": self.effects,
                 "indistinguishable_from": self.indistinguishable_from,
-                "refined": {"effects": self.refined.effects, **rm(self.refined)},
+                "refined": {"effects": self.refined.effects, **rm(self.refined),
+                            "held": self._held()},
                 "remaining_structure": self.remaining_structure, "structure": self.structure,
                 "steps": [{k: v for k, v in st.items() if not isinstance(v, FitResult)} for st in self.steps],
                 "shape": self.shape, "evidence": self.evidence,
@@ -79,6 +80,19 @@ class Diagnosis(CalibratedModelMixin):
                 "predictive": {**(self.refined.fit_info.get("predictive") or {}),
                                "alternatives": [{"effects": f.effects, "weight": w}
                                                 for w, f in self.refined.fit_info.get("alternatives") or []]}}
+
+    def _held(self) -> dict:
+        """The brake parameters the refined fit holds at their assumed values, each with the 95 % interval of its
+        assumed spread (:meth:`rollaway.identify.drum_status.ParameterStatus.interval`): these data do not narrow it."""
+        if self.drum is None:
+            return {}
+        out = {}
+        for n, e in self.drum.entries.items():
+            ci, source = e.interval()
+            if n not in self.refined.estimates and ci is not None:
+                out[n] = {"value": e.value, "unit": e.unit, "status": e.status, "prior_sd": e.prior_sd,
+                          "ci95": list(ci), "ci95_from": source}
+        return out
 
     def to_json(self, path=None) -> str:
         text = json.dumps(to_jsonable(self.as_dict()), indent=2)

@@ -24,7 +24,7 @@ direction's torque stays where the data put it.
 """
 from __future__ import annotations
 
-from dataclasses import dataclass, field
+from dataclasses import dataclass
 
 import numpy as np
 
@@ -34,6 +34,7 @@ from rollaway.identify.calibrate import FitResult, calibrate, jacobian_at
 from rollaway.identify.workers import fit_all
 from rollaway.bench.measurements import Measurements
 from rollaway.identify.model import DrumPlan
+from rollaway.identify.drum_status import ParameterStatus
 from rollaway.model.drum_model import Covariance
 from rollaway.model.parameters import BrakeParameters, load_parameters
 
@@ -42,42 +43,6 @@ CONFOUND_LOADING = 0.3         # share of the weak direction (|loading|·column 
 FIX_FIRST = ("ambient_temp_C", "shoe_arm_ratio", "u6_offset_m", "u6_slope_m_per_N", "heat_transfer_W_m2K",
              "mu_drum")        # among near-equal loadings, fix the earlier one (keep the torque scale longest)
 UNIDENTIFIED = "not identifiable from these data"     # the bare drum's reason for a weak direction it fixed
-
-
-@dataclass
-class ParameterStatus:
-    """One brake parameter of the identifiability report."""
-
-    name: str
-    status: str                      # "fitted", "fixed", "not tested", "logged", "fixed by you"
-    value: float
-    assumed_value: float
-    unit: str
-    stderr: float | None = None
-    ci95: tuple[float, float] | None = None
-    prior_sd: float | None = None    # the doubt kept for bands when not fitted [assumed]
-    confounded_with: list[str] = field(default_factory=list)
-    reason: str = ""
-
-    def as_dict(self) -> dict:
-        return {"status": self.status, "value": self.value, "assumed_value": self.assumed_value, "unit": self.unit,
-                "stderr": self.stderr, "ci95": None if self.ci95 is None else list(self.ci95),
-                "prior_sd": self.prior_sd, "confounded_with": self.confounded_with, "reason": self.reason,
-                "stands_for": FREE_PARAMETERS[self.name].stands_for}
-
-    def line(self) -> str:
-        p = FREE_PARAMETERS[self.name]
-        if self.status == "fitted":
-            ci = f" [{self.ci95[0]:.4g}, {self.ci95[1]:.4g}]" if self.ci95 else ""
-            head = f"fitted        {self.value:.5g} ± {self.stderr:.2g}{ci} {p.unit}"
-            tail = f"  (assumed {self.assumed_value:.4g}; stands for the {p.stands_for})"
-        else:
-            head = f"{self.status:<13} {self.value:.5g} {p.unit}"
-            where = "in the bands" if p.drawn else ("in the parameter intervals, held in the bands (drawn facing "
-                                                    "an untested direction)")
-            tail = f"  — {self.reason}" + (f" (kept as ±{self.prior_sd:.2g} {p.unit} {where} [assumed])"
-                                            if self.prior_sd else "")
-        return f"  {self.name:<21} {head}{tail}"
 
 
 @dataclass
