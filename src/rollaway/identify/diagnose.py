@@ -41,7 +41,7 @@ from rollaway.bench.measurements import Measurements
 from rollaway.bench.noise import Noise, noise_estimate, sample_sigma
 from rollaway.identify.detection import detection_limits, hidden_shifts, hidden_words, limits_words
 from rollaway.identify.diagnose_words import describe_residual, no_candidate_words, noise_words, structure_words
-from rollaway.identify.partner import beside_partial, own_evidence, stood_for, unsure_second
+from rollaway.identify.partner import beside_partial, offsets_rival, own_evidence, stood_for, unsure_second
 from rollaway.identify.predictive_set import attach_predictive, interval_words
 from rollaway.identify.shape import (candidate_shapes, channel_alternatives, channel_rivals, loose_form, pair_shapes,
                                      other_form_rivals, shape_rivals)
@@ -306,8 +306,8 @@ def diagnose(data: Measurements, params=None, effects=None, *, noise_torque_Nm: 
         rivalry = set_rivals(data, params, names, [e["effect"] for e in selected], refined, infl, SCREEN_ITERATIONS)
         for a in rivalry:
             a["tell_apart"] = tell_apart(refined, a["fit"], validity(full), nq.sigma)
-    for twin_of in (law_twin_rival, loss_twin_rival, unsure_second(steps)) if verdict != "none" else ():
-        rivalry = twin_of(data, params, refined, first_cands, validity(full), nq.sigma, infl, rivalry)
+    for rule in (() if verdict == "none" else (law_twin_rival, loss_twin_rival, unsure_second(steps), offsets_rival(steps))):
+        rivalry = rule(data, params, refined, first_cands, validity(full), nq.sigma, infl, rivalry)
     if verdict == "none" and remaining and not rivalry:
         shapes = candidate_shapes(data, first_cands, drum.plan, nq, nt)    # which quantity, whatever its form
         rivalry = closest(base, first_cands, base_cv, BIC_THRESHOLD, validity(full), nq.sigma, shapes)
@@ -320,8 +320,8 @@ def diagnose(data: Measurements, params=None, effects=None, *, noise_torque_Nm: 
         ev.append(limits_words(limits))
     forms += channels
     pool = [base] + [c.fit for c in first_cands]
-    kept = [a["fit"] for a in rivalry + weak]                 # named beside the verdict: always in the bands
-    ties = [a["fit"] for a in rivalry if a.get("kind") == "rival" and not a.get("channel")]   # at least BIC weight
+    kept = [a["fit"] for a in rivalry + weak if a.get("bands", True)]   # named beside the verdict: in the bands
+    ties = [a["fit"] for a in rivalry if a.get("kind") == "rival" and not a.get("channel") and a.get("bands", True)]
     if data is not full:                                  # the chosen model, refitted on every row
         attach_predictive(data, refined, pool, len(selected), drum, misfit, kept, forms, ties, (nq, nt))
         alts, pool = refined.fit_info.get("alternatives", []), []

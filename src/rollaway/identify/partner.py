@@ -46,28 +46,27 @@ def own_evidence(data, params, chosen, current, struct, fits, nq, nt, steps, ev,
     first = fits[0] if fits and fits[0] is not None and fits[0].effects == chosen[:1] else by_name[chosen[0]]
     ahead = _reform_job(params, chosen[0], first) if names else None      # beside_reformed's first fit, ahead
     own = beyond_reform(data, params, chosen[:1], current, current, refree, also=[ahead] if ahead else ())
-    if own is None:
-        return chosen, current, struct, fits
+    if own is None:             # the first has no flexible form (per-test offsets): is it beyond the second re-formed?
+        back = _offsets_beyond_reform(data, params, chosen, current, by_name[chosen[1]], refree, nq)
+        if back is None or back["passes"]:
+            return chosen, current, struct, fits
+        return _second_alone(chosen, back, by_name, nq, nt, steps, ev, current)
     reform = own.pop("also")
+    if own["passes"] and reform and _offsets_absorbed(chosen[1], reform[0], nq):
+        own = dict(own, passes=False, offsets=True)
     if own["passes"] and departures:
         wider = beyond_reform(data, params, chosen[:1], current, current, refree + departures)
         if wider is not None and not wider["passes"]:
             wider.pop("also", None)
             own, refree = dict(wider, departures=list(departures)), refree + departures
-    steps.append({"step": "own evidence", "effect": chosen[1], "kept": own["passes"], "beyond_reform": own})
+    steps.append({"step": "own evidence", "effect": chosen[1], "kept": own["passes"], "beyond_reform": own,
+                  **({"offsets_pair": current} if own.get("offsets") else {})})
     if own["passes"]:
         back = beyond_reform(data, params, chosen[1:], current, current, refree)
-        if back is not None and not back["passes"]:
-            back.pop("also", None)                  # the first is not beyond the second re-formed: a partner too
-            steps.append({"step": "own evidence of the first", "effect": chosen[0], "kept": False,
-                          "beyond_reform": back})
-            second = by_name[chosen[1]]
-            ev.append(f"{chosen[1]} predicts held-out tests better beside {chosen[0]} than {chosen[0]} re-formed, but "
-                      f"{chosen[0]} does not beside {chosen[1]} re-formed (its hook as a linear spline, no second "
-                      f"effect): held-out log score {back['heldout_elpd']:+.1f} ± {back['heldout_se']:.1f}, better in "
-                      f"{back['better_tests']} of {back['tests']} tests{refit_words(back)} — {chosen[0]} only "
-                      f"absorbed {chosen[1]}'s form mismatch; {chosen[1]} is named alone.")
-            return [chosen[1]], second, structure(second, nq, nt), [second]
+        if back is not None and not back["passes"]:     # the first is not beyond the second re-formed: a partner too
+            return _second_alone(chosen, back, by_name, nq, nt, steps, ev, current,
+                                 f"{chosen[1]} predicts held-out tests better beside {chosen[0]} than {chosen[0]} "
+                                 f"re-formed, but ")
         term = beyond_second_term(data, params, chosen[0], chosen[1], current)
         if term is None or term["passes"]:
             return chosen, current, struct, fits
@@ -96,13 +95,59 @@ def own_evidence(data, params, chosen, current, struct, fits, nq, nt, steps, ev,
                   f"in {t['better_tests']} of {t['tests']} tests) — it only wrote {chosen[0]}'s law with one time "
                   f"constant more; not named.")
         return chosen[:1], first, structure(first, nq, nt), [first]
-    ev.append(f"{chosen[1]} lowers BIC and predicts held-out tests better beside {chosen[0]}, but not beyond "
-              f"{chosen[0]} re-formed (its hook as a linear spline, no second effect"
-              + (f"; {', '.join(refree)} freed in both" if refree else "") + "): held-out log score "
-              f"{own['heldout_elpd']:+.1f} ± {own['heldout_se']:.1f}, better in {own['better_tests']} of "
-              f"{own['tests']} tests{refit_words(own)} — a partner that only absorbs the first effect's form "
-              f"mismatch or a departure of the drum; not named.")
+    score = (f"log score {own['heldout_elpd']:+.1f} ± {own['heldout_se']:.1f}, better in {own['better_tests']} of "
+             f"{own['tests']} tests{refit_words(own)}")
+    ev.append(f"{chosen[1]} lowers BIC and predicts held-out tests better beside {chosen[0]}, but "
+              + (f"{chosen[0]} re-formed (its hook as a linear spline) leaves no per-test offsets for it to take (the "
+                 f"held-out {score} fits each held-out test's own offsets and cannot fault them)"
+                 if own.get("offsets") else
+                 f"not beyond {chosen[0]} re-formed (its hook as a linear spline, no second effect"
+                 + (f"; {', '.join(refree)} freed in both" if refree else "") + f"): held-out {score}")
+              + " — a partner that only absorbs the first effect's form mismatch or a departure of the drum; not named.")
     return chosen[:1], first, structure(first, nq, nt), [first]
+
+
+def _offsets_beyond_reform(data, params, chosen, current: FitResult, second: FitResult, refree, nq):
+    """For a pair whose first effect has no flexible form: :func:`~rollaway.identify.beyond.beyond_reform` of the
+    first beside the second re-formed, and where the first has per-test parameters (offsets, whose held-out score
+    fits each held-out test's own values as it does T_0, so it cannot fault them) it passes only where the residual
+    of the second re-formed is per-test offsets and nothing else (:func:`~rollaway.identify.selection.per_test_signature`,
+    the forward step's gate): where the tests are short a temperature law's form mismatch is a level error test by
+    test, which offsets take up.  None where the second has no flexible form either."""
+    back = beyond_reform(data, params, chosen[1:], current, current, refree)
+    if back is None or not back["passes"]:
+        return back
+    job = _reform_job(params, chosen[1], second)
+    reform = None if job is None else calibrate(data, *job[:2], **job[2])
+    return dict(back, passes=False, offsets=True) if _offsets_absorbed(chosen[0], reform, nq) else back
+
+
+def _offsets_absorbed(name: str, reform: FitResult | None, nq) -> bool:
+    """True where *name* has per-test parameters and the fit *reform* (the other effect re-formed) leaves no
+    per-test offsets for them (:func:`~rollaway.identify.selection.per_test_signature`, the forward step's gate)."""
+    from rollaway.identify.selection import has_per_test, per_test_signature
+    return (has_per_test(name) and reform is not None and reform.jacobian is not None
+            and not per_test_signature(reform, nq))
+
+
+def _second_alone(chosen, back: dict, by_name: dict, nq, nt, steps: list, ev: list, pair: FitResult, lead: str = ""):
+    """:func:`own_evidence`'s answer where the first of *chosen* does not predict held-out tests better than the
+    second re-formed (*back*, :func:`~rollaway.identify.beyond.beyond_reform`): the first only absorbed the second's
+    form mismatch, and the second is named alone — also where the first has no flexible form of its own (per-test
+    offsets, which take up a temperature law's misfit test by test where the tests are short)."""
+    back.pop("also", None)
+    steps.append({"step": "own evidence of the first", "effect": chosen[0], "kept": False, "beyond_reform": back,
+                  **({"offsets_pair": pair} if back.get("offsets") else {})})
+    second = by_name[chosen[1]]
+    score = (f"log score {back['heldout_elpd']:+.1f} ± {back['heldout_se']:.1f}, better in "
+             f"{back['better_tests']} of {back['tests']} tests{refit_words(back)}")
+    why = (f"{chosen[1]} re-formed (its hook as a linear spline, no second effect) leaves no per-test offsets for "
+           f"{chosen[0]} to take (the held-out score, {score}, fits each held-out test's own offsets and cannot fault "
+           f"them)" if back.get("offsets") else
+           f"{chosen[0]} does not predict held-out tests better beside {chosen[1]} re-formed (its hook as a linear "
+           f"spline, no second effect): held-out {score}")
+    ev.append(f"{lead}{why} — {chosen[0]} only absorbed {chosen[1]}'s form mismatch; {chosen[1]} is named alone.")
+    return [chosen[1]], second, structure(second, nq, nt), [second]
 
 
 def stood_for(steps: list[dict]) -> tuple[str, ...]:
@@ -289,3 +334,40 @@ def unsure_second(steps: list[dict]):
                     f"a linear spline, is not ruled out"),
             "tell_apart": tell_apart(verdict, reform, tested, noise_torque_Nm)}]
     return rival
+
+
+def offsets_rival(steps: list[dict]):
+    """A rule for :func:`rollaway.identify.diagnose.diagnose`, called as the twin rules are
+    (:mod:`rollaway.identify.twins`): where :func:`own_evidence` left per-test offsets out of a pair because the
+    other effect re-formed leaves none for them (:func:`_offsets_absorbed`), the pair is named beside the verdict
+    while fewer than :data:`~rollaway.identify.ambiguity.MAX_RIVALS` are.  On short tests, each at its own
+    temperature, a temperature law re-formed and per-test offsets write the same test levels: the verdict is the
+    fewer effects, not a finding that the offsets are absent (a friction law beside true offsets on 120 s tests at
+    10 Hz was named alone, a quadratic friction law on 12 s tests at 100 Hz had offsets named beside it).  It is
+    named, not drawn in the bands (``"bands": False``): offsets are the bench's (a zero per test), and where they
+    took up the tests' levels the pair's brake parameters stayed at their assumed values — its road torque is not
+    what the data measured."""
+    def rival(data, params, verdict, first_cands, tested: dict, noise_torque_Nm: float, inflation: float,
+              rivalry: list[dict]) -> list[dict]:
+        from rollaway.identify.ambiguity import MAX_RIVALS
+        step = next((st for st in steps if st.get("offsets_pair") is not None), None)
+        if step is None or len(rivalry) >= MAX_RIVALS:
+            return rivalry
+        pair, own = step["offsets_pair"], step["beyond_reform"]
+        names = [e.name for e in verdict.model.effects]
+        if (pair.jacobian is None or not set(names) < set(pair.effects)
+                or any(sorted(a["effects"]) == sorted(pair.effects) for a in rivalry)):
+            return rivalry
+        offsets = next(e for e in pair.effects if e not in names)
+        return rivalry + [{
+            "kind": "rival", "form": "exact", "effects": list(pair.effects), "fit": pair, "bands": False,
+            "delta_bic": float(pair.bic - verdict.bic), "heldout_elpd": float(own["heldout_elpd"]),
+            "heldout_se": float(own["heldout_se"]),
+            "why": (f"{' + '.join(names)} re-formed leaves no per-test offsets, but on these tests a re-formed law and "
+                    f"{offsets} write the same test levels: the pair is not ruled out"),
+            "tell_apart": {"test": None, "words": (
+                "a reading of each test's torque zero (the torque with the brake released, before the hold) or longer "
+                "holds would: per-test offsets stay constant through a hold, a temperature law follows the drum as it "
+                "cools")}}]
+    return rival
+
