@@ -7,7 +7,7 @@ from types import SimpleNamespace
 import pytest
 
 from rollaway.identify.diagnose import diagnose
-from rollaway.identify.partner import offsets_rival
+from rollaway.identify.offsets import offsets_rival
 from tests.identify.bench_generator import OTHER_DRUMS, generate
 
 
@@ -27,6 +27,21 @@ def test_offsets_that_only_take_up_a_temperature_laws_misfit_on_short_tests_are_
     assert any("leaves no per-test offsets" in w for w in d.evidence)
 
 
+def test_offsets_alone_that_a_re_formed_temperature_law_writes_as_well_are_not_the_only_answer():
+    """A sigmoid modulus drop on a drum unlike the paper's, eight 12 s tests at 100 Hz: each test sits at its own
+    temperature, and per-test offsets wrote the tests' levels with nothing flagged.  A temperature law re-formed
+    leaves no per-test offsets either: it is named beside the offsets, with the test that tells them apart."""
+    data = generate(["modulus_sigmoid"], sampling="100Hz", seed=3321, duration_s=12.0, n_forces=4,
+                    drum=OTHER_DRUMS["all_together"], mu=0.4065, h=40.16)
+    d = diagnose(data)
+    if d.verdict != "torque_zero_offset":
+        assert "torque_zero_offset" not in [e["effect"] for e in d.effects], d.summary()
+        return
+    laws = [a for a in d.alternatives if a["effects"] in (["modulus_temperature"], ["friction_temperature"])]
+    assert laws and all("torque zero" in a["tell_apart"]["words"] for a in laws), d.summary()
+    assert "cannot tell them apart" in d.summary().splitlines()[0]
+
+
 @pytest.mark.parametrize("seed", [1, 6])
 def test_true_offsets_beside_a_friction_change_on_long_tests_are_still_named(seed):
     d = diagnose(generate(["zero_offset", "friction_linear"], sampling="5min", seed=seed))
@@ -38,7 +53,7 @@ def _case(names=("friction_temperature",), pair=("torque_zero_offset", "friction
     verdict = SimpleNamespace(model=SimpleNamespace(effects=[SimpleNamespace(name=n) for n in names]), bic=120.0)
     steps = [{"step": "own evidence of the first", "effect": pair[0], "kept": False, "offsets_pair": fit,
               "beyond_reform": {"passes": False, "offsets": True, "heldout_elpd": 50.0, "heldout_se": 40.0}}]
-    return offsets_rival(steps), verdict, fit
+    return offsets_rival(steps, None), verdict, fit
 
 
 def test_the_offsets_pair_is_flagged_while_rivals_are_few():
@@ -52,4 +67,4 @@ def test_the_offsets_pair_is_flagged_while_rivals_are_few():
     assert rule(None, None, verdict, [], {}, 8.0, 1.0, named) == named
     rule, verdict, _ = _case(names=("modulus_temperature",))        # the verdict is not the pair less the offsets
     assert rule(None, None, verdict, [], {}, 8.0, 1.0, []) == []
-    assert offsets_rival([])(None, None, verdict, [], {}, 8.0, 1.0, []) == []
+    assert offsets_rival([], None)(None, None, verdict, [], {}, 8.0, 1.0, []) == []

@@ -41,7 +41,8 @@ from rollaway.bench.measurements import Measurements
 from rollaway.bench.noise import Noise, noise_estimate, sample_sigma
 from rollaway.identify.detection import detection_limits, hidden_shifts, hidden_words, limits_words
 from rollaway.identify.diagnose_words import describe_residual, no_candidate_words, noise_words, structure_words
-from rollaway.identify.partner import beside_partial, offsets_rival, own_evidence, stood_for, unsure_second
+from rollaway.identify.offsets import offsets_rival
+from rollaway.identify.partner import beside_partial, own_evidence, stood_for, unsure_second
 from rollaway.identify.predictive_set import attach_predictive, interval_words
 from rollaway.identify.shape import (candidate_shapes, channel_alternatives, channel_rivals, loose_form, pair_shapes,
                                      other_form_rivals, shape_rivals)
@@ -306,7 +307,7 @@ def diagnose(data: Measurements, params=None, effects=None, *, noise_torque_Nm: 
         rivalry = set_rivals(data, params, names, [e["effect"] for e in selected], refined, infl, SCREEN_ITERATIONS)
         for a in rivalry:
             a["tell_apart"] = tell_apart(refined, a["fit"], validity(full), nq.sigma)
-    for rule in (() if verdict == "none" else (law_twin_rival, loss_twin_rival, unsure_second(steps), offsets_rival(steps))):
+    for rule in (() if verdict == "none" else (law_twin_rival, loss_twin_rival, unsure_second(steps), offsets_rival(steps, nq))):
         rivalry = rule(data, params, refined, first_cands, validity(full), nq.sigma, infl, rivalry)
     if verdict == "none" and remaining and not rivalry:
         shapes = candidate_shapes(data, first_cands, drum.plan, nq, nt)    # which quantity, whatever its form
@@ -316,8 +317,7 @@ def diagnose(data: Measurements, params=None, effects=None, *, noise_torque_Nm: 
     indist = [" + ".join(a["effects"]) for a in rivalry + weak]
     ev += alternative_words(verdict, rivalry + weak, [e["effect"] for e in selected])
     limits = detection_limits(data, base) if verdict == "none" and not remaining else []
-    if limits:
-        ev.append(limits_words(limits))
+    ev += [limits_words(limits)] if limits else []
     forms += channels
     pool = [base] + [c.fit for c in first_cands]
     kept = [a["fit"] for a in rivalry + weak if a.get("bands", True)]   # named beside the verdict: in the bands

@@ -13,6 +13,7 @@ from __future__ import annotations
 
 from rollaway.identify.beyond import beyond_reform, beyond_second_term, heldout_preference, refit_words
 from rollaway.identify.calibrate import FitResult, calibrate
+from rollaway.identify.offsets import offsets_absorbed
 from rollaway.identify.workers import fit_all
 from rollaway.identify.selection import BIC_THRESHOLD, REFORM_ITERATIONS, SCREEN_ITERATIONS, structure
 
@@ -52,7 +53,7 @@ def own_evidence(data, params, chosen, current, struct, fits, nq, nt, steps, ev,
             return chosen, current, struct, fits
         return _second_alone(chosen, back, by_name, nq, nt, steps, ev, current)
     reform = own.pop("also")
-    if own["passes"] and reform and _offsets_absorbed(chosen[1], reform[0], nq):
+    if own["passes"] and reform and offsets_absorbed(chosen[1], reform[0], nq):
         own = dict(own, passes=False, offsets=True)
     if own["passes"] and departures:
         wider = beyond_reform(data, params, chosen[:1], current, current, refree + departures)
@@ -119,15 +120,7 @@ def _offsets_beyond_reform(data, params, chosen, current: FitResult, second: Fit
         return back
     job = _reform_job(params, chosen[1], second)
     reform = None if job is None else calibrate(data, *job[:2], **job[2])
-    return dict(back, passes=False, offsets=True) if _offsets_absorbed(chosen[0], reform, nq) else back
-
-
-def _offsets_absorbed(name: str, reform: FitResult | None, nq) -> bool:
-    """True where *name* has per-test parameters and the fit *reform* (the other effect re-formed) leaves no
-    per-test offsets for them (:func:`~rollaway.identify.selection.per_test_signature`, the forward step's gate)."""
-    from rollaway.identify.selection import has_per_test, per_test_signature
-    return (has_per_test(name) and reform is not None and reform.jacobian is not None
-            and not per_test_signature(reform, nq))
+    return dict(back, passes=False, offsets=True) if offsets_absorbed(chosen[0], reform, nq) else back
 
 
 def _second_alone(chosen, back: dict, by_name: dict, nq, nt, steps: list, ev: list, pair: FitResult, lead: str = ""):
@@ -334,40 +327,3 @@ def unsure_second(steps: list[dict]):
                     f"a linear spline, is not ruled out"),
             "tell_apart": tell_apart(verdict, reform, tested, noise_torque_Nm)}]
     return rival
-
-
-def offsets_rival(steps: list[dict]):
-    """A rule for :func:`rollaway.identify.diagnose.diagnose`, called as the twin rules are
-    (:mod:`rollaway.identify.twins`): where :func:`own_evidence` left per-test offsets out of a pair because the
-    other effect re-formed leaves none for them (:func:`_offsets_absorbed`), the pair is named beside the verdict
-    while fewer than :data:`~rollaway.identify.ambiguity.MAX_RIVALS` are.  On short tests, each at its own
-    temperature, a temperature law re-formed and per-test offsets write the same test levels: the verdict is the
-    fewer effects, not a finding that the offsets are absent (a friction law beside true offsets on 120 s tests at
-    10 Hz was named alone, a quadratic friction law on 12 s tests at 100 Hz had offsets named beside it).  It is
-    named, not drawn in the bands (``"bands": False``): offsets are the bench's (a zero per test), and where they
-    took up the tests' levels the pair's brake parameters stayed at their assumed values — its road torque is not
-    what the data measured."""
-    def rival(data, params, verdict, first_cands, tested: dict, noise_torque_Nm: float, inflation: float,
-              rivalry: list[dict]) -> list[dict]:
-        from rollaway.identify.ambiguity import MAX_RIVALS
-        step = next((st for st in steps if st.get("offsets_pair") is not None), None)
-        if step is None or len(rivalry) >= MAX_RIVALS:
-            return rivalry
-        pair, own = step["offsets_pair"], step["beyond_reform"]
-        names = [e.name for e in verdict.model.effects]
-        if (pair.jacobian is None or not set(names) < set(pair.effects)
-                or any(sorted(a["effects"]) == sorted(pair.effects) for a in rivalry)):
-            return rivalry
-        offsets = next(e for e in pair.effects if e not in names)
-        return rivalry + [{
-            "kind": "rival", "form": "exact", "effects": list(pair.effects), "fit": pair, "bands": False,
-            "delta_bic": float(pair.bic - verdict.bic), "heldout_elpd": float(own["heldout_elpd"]),
-            "heldout_se": float(own["heldout_se"]),
-            "why": (f"{' + '.join(names)} re-formed leaves no per-test offsets, but on these tests a re-formed law and "
-                    f"{offsets} write the same test levels: the pair is not ruled out"),
-            "tell_apart": {"test": None, "words": (
-                "a reading of each test's torque zero (the torque with the brake released, before the hold) or longer "
-                "holds would: per-test offsets stay constant through a hold, a temperature law follows the drum as it "
-                "cools")}}]
-    return rival
-

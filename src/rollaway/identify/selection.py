@@ -71,10 +71,11 @@ def structure(fit: FitResult, nq: Noise, nt: Noise) -> dict:
     return out
 
 
-def per_test_signature(fit: FitResult, nq: Noise) -> bool:
+def per_test_signature(fit: FitResult, nq: Noise, within: bool = True) -> bool:
     """True when the torque residual is per-test offsets and nothing else: its test means differ
     (ANOVA p < STRUCTURE_P) and, with each test's mean removed, no structure is left.  Only then may a
-    per-test (nuisance) effect stand in the model: otherwise its per-test values would absorb physics."""
+    per-test (nuisance) effect stand in the model: otherwise its per-test values would absorb physics.
+    *within* False: only that the test means differ (offsets left to take, whatever else is left)."""
     from rollaway.identify.residuals import STRUCTURE_P
     _, rq = fit.residuals()
     d = fit.data
@@ -82,8 +83,8 @@ def per_test_signature(fit: FitResult, nq: Noise) -> bool:
                           (len(d),))
     kq = fit.effective_parameters.get("torque", len(fit.model.torque_parameters()))
     full = structure_tests(d, rq, nq, kq, sigma=sig)
-    if full["test_offsets"]["p"] >= STRUCTURE_P:
-        return False
+    if full["test_offsets"]["p"] >= STRUCTURE_P or not within:
+        return full["test_offsets"]["p"] < STRUCTURE_P
     w = 1.0 / sig ** 2
     mean = np.bincount(d.test_index, w * rq, d.n_tests) / np.maximum(np.bincount(d.test_index, w, d.n_tests), 1e-300)
     inner = structure_tests(d, rq - mean[d.test_index], nq, kq + d.n_tests, sigma=sig)
