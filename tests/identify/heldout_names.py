@@ -6,6 +6,7 @@ alternatives, partner effects (a second effect named where one is hidden), struc
     PYTHONPATH=src python -m tests.identify.heldout_names --sets 60
     PYTHONPATH=src python -m tests.identify.heldout_names --sets 72 --rotated    # every kind in every setting
     PYTHONPATH=src python -m tests.identify.heldout_names --sets 72 --two        # two hidden effects a campaign
+    PYTHONPATH=src python -m tests.identify.heldout_names --sets 96 --short      # short high-rate logs
 
 With ``--two`` the campaigns are :func:`tests.uncertainty.band_questions.two_effect_data`'s: right is the verdict's
 set of effects equal to the hidden pair's; a false name is an effect named that is not hidden, with no flagged
@@ -57,6 +58,25 @@ def rotated_campaign(i: int):
     return hidden, data
 
 
+SHORT = [("10Hz", 120.0, 4), ("100Hz", 12.0, 4), ("1Hz", 1200.0, 3), ("10Hz", 240.0, 2)]   # sampling, s, forces
+
+
+def short_campaign(i: int):
+    """(hidden effect or None, data) of a short high-rate log (≤ 10 000 rows: tests of 12–1200 s at 1–100 Hz, as
+    :data:`SHORT` turns once per round of kinds), one direction in every fifth, drums from ``OTHER_DRUMS`` and
+    ``MORE_DRUMS`` too (seeds 3300 + i).  Each short test sits at its own temperature: a temperature law's form
+    mismatch is a level error test by test there."""
+    rng = np.random.default_rng(3300 + i)
+    hidden = HIDDEN[i % len(HIDDEN)]
+    sampling, duration_s, n_forces = SHORT[(i // len(HIDDEN)) % len(SHORT)]
+    drums = [{}] + list(OTHER_DRUMS.values()) + list(MORE_DRUMS.values())
+    kw = {"directions": (("downhill",), ("uphill",))[i % 2]} if i % 5 == 4 else {}
+    data = generate([hidden] if hidden else [], sampling=sampling, seed=3300 + i, duration_s=duration_s,
+                    n_forces=n_forces, drum=drums[rng.integers(len(drums))], mu=rng.uniform(0.3, 0.45),
+                    h=rng.uniform(25.0, 45.0), **kw)
+    return hidden, data
+
+
 def judge(hidden, d) -> dict:
     """Right (verdict or a flagged alternative), partner named, structure, of one diagnosis."""
     expect = {"none"} if hidden is None else ({EFFECTS[hidden][1]} | EQUIVALENT.get(hidden, set()))
@@ -82,7 +102,7 @@ def judge_two(hidden: list, d) -> dict:
             "effects": sorted(named), "alternatives": [sorted(a) for a in alts]}
 
 
-def run(sets: int, start: int = 0, rotated: bool = False, two: bool = False) -> list[dict]:
+def run(sets: int, start: int = 0, rotated: bool = False, two: bool = False, short: bool = False) -> list[dict]:
     from rollaway.identify.diagnose import diagnose
     from tests.uncertainty.band_questions import two_effect_data
     rows = []
@@ -91,7 +111,7 @@ def run(sets: int, start: int = 0, rotated: bool = False, two: bool = False) -> 
             got = two_effect_data(i)
             hidden, data = [str(e) for e in got[0]], got[5]
         else:
-            hidden, data = (rotated_campaign if rotated else campaign)(i)
+            hidden, data = (short_campaign if short else rotated_campaign if rotated else campaign)(i)
         t = time.perf_counter()
         d = diagnose(data)
         rows.append({"i": i, "hidden": hidden, "rows": len(data), "seconds": time.perf_counter() - t,
@@ -115,9 +135,10 @@ def main(argv=None):
     ap.add_argument("--start", type=int, default=0)
     ap.add_argument("--rotated", action="store_true", help="every hidden kind in every setting (rotated_campaign)")
     ap.add_argument("--two", action="store_true", help="two hidden effects a campaign (band_questions.two_effect_data)")
+    ap.add_argument("--short", action="store_true", help="short high-rate logs (short_campaign)")
     ap.add_argument("--json", help="write every campaign's row to this file")
     a = ap.parse_args(argv)
-    rows = run(a.sets, a.start, a.rotated, a.two)
+    rows = run(a.sets, a.start, a.rotated, a.two, a.short)
     if a.json:
         import json
         Path(a.json).write_text(json.dumps(rows))
