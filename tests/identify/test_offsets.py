@@ -1,5 +1,6 @@
-"""Per-test offsets beside an effect (rollaway.identify.partner): named only where the other effect re-formed leaves
-offsets for them; where it does not, the pair is flagged beside the verdict, not drawn in the bands."""
+"""Per-test offsets beside or instead of a law (rollaway.identify.offsets, rollaway.identify.partner): named beside
+an effect only where that effect re-formed leaves offsets for them (else the pair is flagged beside the verdict, not
+drawn in the bands); named alone with the laws whose re-formed versions write the same test levels beside them."""
 from __future__ import annotations
 
 import os
