@@ -81,13 +81,13 @@ def _laws_instead(data, params, names: list[str], verdict, first_cands, nq, riva
     each re-formed (its hook as a linear spline, one fit each, side by side), that leave no per-test offsets — a
     law that writes the tests' levels as the offsets do, with no value per test.  In the bands with the others
     named beside a verdict."""
-    from rollaway.identify.partner import _reform_job
+    from rollaway.identify.shape import reform_job
     from rollaway.identify.selection import has_per_test
     from rollaway.identify.workers import fit_all
     named = {e for a in rivalry for e in a["effects"]}
     laws = [c for c in sorted(first_cands, key=lambda c: c.fit.bic)
             if not has_per_test(c.effect) and c.effect not in named and c.fit.jacobian is not None][:LAWS_TRIED]
-    jobs = [(c, _reform_job(params, c.effect, c.fit)) for c in laws]
+    jobs = [(c, reform_job(params, c.effect, c.fit)) for c in laws]
     jobs = [(c, j) for c, j in jobs if j is not None]
     out = []
     for (c, _), fit in zip(jobs, fit_all(data, [j for _, j in jobs])):

@@ -14,6 +14,7 @@ from __future__ import annotations
 from rollaway.identify.beyond import beyond_reform, beyond_second_term, heldout_preference, refit_words
 from rollaway.identify.calibrate import FitResult, calibrate
 from rollaway.identify.offsets import offsets_absorbed
+from rollaway.identify.shape import reform_job
 from rollaway.identify.workers import fit_all
 from rollaway.identify.selection import BIC_THRESHOLD, REFORM_ITERATIONS, SCREEN_ITERATIONS, structure
 
@@ -45,7 +46,7 @@ def own_evidence(data, params, chosen, current, struct, fits, nq, nt, steps, ev,
         ev.append(f"With the drum both share, {chosen[0]} alone explains more than {chosen[1]} alone (BIC lower by "
                   f"{alone[0].bic - alone[1].bic:.1f}): it is the first of the two.")
     first = fits[0] if fits and fits[0] is not None and fits[0].effects == chosen[:1] else by_name[chosen[0]]
-    ahead = _reform_job(params, chosen[0], first) if names else None      # beside_reformed's first fit, ahead
+    ahead = reform_job(params, chosen[0], first) if names else None      # beside_reformed's first fit, ahead
     own = beyond_reform(data, params, chosen[:1], current, current, refree, also=[ahead] if ahead else ())
     if own is None:             # the first has no flexible form (per-test offsets): is it beyond the second re-formed?
         back = _offsets_beyond_reform(data, params, chosen, current, by_name[chosen[1]], refree, nq)
@@ -118,7 +119,7 @@ def _offsets_beyond_reform(data, params, chosen, current: FitResult, second: Fit
     back = beyond_reform(data, params, chosen[1:], current, current, refree)
     if back is None or not back["passes"]:
         return back
-    job = _reform_job(params, chosen[1], second)
+    job = reform_job(params, chosen[1], second)
     reform = None if job is None else calibrate(data, *job[:2], **job[2])
     return dict(back, passes=False, offsets=True) if offsets_absorbed(chosen[0], reform, nq) else back
 
@@ -150,16 +151,6 @@ def stood_for(steps: list[dict]) -> tuple[str, ...]:
     from rollaway.model.drum_parameters import FREE_PARAMETERS
     own = next((s["beyond_reform"] for s in steps[::-1] if s.get("step") == "own evidence"), {})
     return tuple(n for n in own.get("departures") or () if FREE_PARAMETERS[n].automatic)
-
-
-def _reform_job(params, first: str, first_fit: FitResult):
-    """The fit job of *first* re-formed (its hook as a linear spline of its covariate, started from *first_fit*),
-    or None without a flexible form."""
-    from rollaway.effects import get_effect
-    from rollaway.identify.shape import covariate_of, flexible_effect, shape_hook
-    found = shape_hook(get_effect(first))
-    flex = None if found is None else flexible_effect(get_effect(first), covariate_of(first_fit, found[1]))
-    return None if flex is None else ([flex], params, dict(start=first_fit.values, max_iterations=REFORM_ITERATIONS))
 
 
 def beside_partial(data, params, first: str, first_fit: FitResult, names, departures=()):
@@ -197,7 +188,7 @@ def _departure_jobs(params, first: str, first_fit: FitResult, name: str, pair: F
     from rollaway.identify.model import DrumPlan
     from rollaway.model.drum_parameters import FREE_PARAMETERS
     wider = tuple(n for n in departures if n not in getattr(params, "free", ()) and FREE_PARAMETERS[n].effect != name)
-    job = _reform_job(params, first, first_fit) if wider else None
+    job = reform_job(params, first, first_fit) if wider else None
     if job is None:
         return []
     plan = DrumPlan(params.params, tuple(params.free) + tuple(dict.fromkeys(wider)))
@@ -227,13 +218,13 @@ def _beside_reformed(data, params, first: str, first_fit: FitResult, names, refo
     Each effect of *names* is screened beside the re-formed first (:data:`SCREEN_ITERATIONS`, the spline held where
     the re-formed first put it: its effect parameters and the brake parameters fitted); the best by BIC
     is refitted with everything free and must lower BIC below :data:`BIC_THRESHOLD` and predict held-out tests better by
-    :func:`~rollaway.identify.beyond.beyond_reform`'s rule.  *reform*: that re-formed first, when already fitted (:func:`_reform_job`).
+    :func:`~rollaway.identify.beyond.beyond_reform`'s rule.  *reform*: that re-formed first, when already fitted (:func:`~rollaway.identify.shape.reform_job`).
     Sought whether or not the re-formed first leaves structure.  *departures*: the brake parameters the caller
     frees next in :func:`_beside_departures`; its fits run beside the second term's (kept by
     :mod:`rollaway.identify.memo`).
     Returns (name, the catalogue pair's fit, ΔBIC, held-out comparison, the re-formed first's fit) or None."""
     from rollaway.effects import get_effect
-    job = _reform_job(params, first, first_fit)
+    job = reform_job(params, first, first_fit)
     if job is None:
         return None
     flex = job[0][0]
@@ -252,7 +243,7 @@ def _beside_reformed(data, params, first: str, first_fit: FitResult, names, refo
                      max_iterations=REFORM_ITERATIONS)                      # with the re-formed first's budget
     if both.jacobian is None or both.bic - reform.bic >= BIC_THRESHOLD:
         return None
-    alone = _own_reform_job(params, name, both)         # asked next where the comparison passes: fitted beside it
+    alone = reform_job(params, name, both)         # asked next where the comparison passes: fitted beside it
     pair_job = ([first, name], params, dict(start=both.values))     # ... and the catalogue pair after it
     pref = heldout_preference(data, both, reform, also=[j for j in (alone, pair_job) if j])
     if not pref["passes"] or not _beyond_own_reform(data, params, name, both):
@@ -275,21 +266,11 @@ def _all_but(params, flex, name: str) -> list[str]:
 def _beyond_own_reform(data, params, name: str, both: FitResult) -> bool:
     """The pair *both* (the first re-formed beside *name*) also predicts held-out tests better than *name* re-formed
     alone: else one mis-formed effect, *name*, is the story and the first was its stand-in."""
-    job = _own_reform_job(params, name, both)
+    job = reform_job(params, name, both)
     if job is None:
         return True
     alone = calibrate(data, job[0], job[1], **job[2])
     return alone.jacobian is None or heldout_preference(data, both, alone)["passes"]
-
-
-def _own_reform_job(params, name: str, both: FitResult):
-    """The fit job ``(effects, params, kwargs)`` of *name* re-formed alone (its hook as a linear spline along the
-    covariate *both* predicts), started from *both*, or None without a flexible form."""
-    from rollaway.effects import get_effect
-    from rollaway.identify.shape import covariate_of, flexible_effect, shape_hook
-    found = shape_hook(get_effect(name))
-    flex = None if found is None else flexible_effect(get_effect(name), covariate_of(both, found[1]))
-    return None if flex is None else ([flex], params, dict(start=both.values, max_iterations=REFORM_ITERATIONS))
 
 
 def unsure_second(steps: list[dict]):

@@ -361,3 +361,13 @@ def shape_curves(effect: Effect, catalogue_fit, flex_fit, flex_cls, points: int 
     return {"hook": hook, "covariate": cov, "unit": COVARIATE_UNITS.get(cov, ""),
             "catalogue": {"x": x[order].tolist(), "factor": (np.broadcast_to(cat, x.shape)[order] / cat_ref).tolist()},
             "flexible": {"x": grid.tolist(), "factor": flex.tolist(), "knots": list(map(float, flex_cls.knots))}}
+
+
+def reform_job(params, name: str, fit):
+    """The fit job ``(effects, params, kwargs)`` of the effect *name* re-formed (its hook as a linear spline along the
+    covariate *fit* predicts: :func:`flexible_effect`), started from *fit*'s values with the re-formed fits' budget
+    (:data:`~rollaway.identify.selection.REFORM_ITERATIONS`), or None without a flexible form."""
+    from rollaway.identify.selection import REFORM_ITERATIONS
+    found = shape_hook(get_effect(name))
+    flex = None if found is None else flexible_effect(get_effect(name), covariate_of(fit, found[1]))
+    return None if flex is None else ([flex], params, dict(start=fit.values, max_iterations=REFORM_ITERATIONS))
