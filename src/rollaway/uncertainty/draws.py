@@ -185,6 +185,26 @@ def torque_level_ratio(model: DrumModel, hand_force_N: float, tested_N, sign: fl
     return at_lo / at_f if at_f > 0.0 else float("inf")
 
 
+def unseen_hold_change(model: DrumModel, hand_force_N: float, sign: float, initial_temp_C, duration_s: float,
+                       points: int = 61) -> float:
+    """The largest relative change of the calibrated model's torque between the end of the bench's longest test
+    (the predictive record's ``tested_duration_s``) and *duration_s*, against its torque there (same hand force,
+    direction *sign* and start temperature): what a hold longer than the bench's asks the model to carry unseen
+    (:func:`rollaway.uncertainty.predictive.hold_sd`).  0 within the tested hold; inf where the torque there is none."""
+    from rollaway.hold.numeric import MarginFunction
+    from rollaway.uncertainty.predictive import TOLERANCE
+    tested = model.predictive.get("tested_duration_s")
+    if not tested or not np.isfinite(tested) or duration_s <= (1.0 + TOLERANCE) * float(tested):
+        return 0.0
+    fn = MarginFunction(model, np.array([float(hand_force_N)]), np.array([float(sign)]), 1.0, None, None,
+                        initial_temp_C)
+    t = np.linspace(float(tested), float(duration_s), points)
+    torque = np.asarray(fn(t, np.zeros(points, int)), float)
+    if not (np.isfinite(torque[0]) and torque[0] > 0.0):
+        return float("inf")
+    return float(np.max(np.abs(torque / torque[0] - 1.0)))
+
+
 def own_record(pred: dict, part: DrumModel) -> dict:
     """The predictive record whose model error a part of the mixture draws: *part*'s own (an alternative effect set
     carries its own held-out error, :func:`rollaway.uncertainty.bands.model_error`), else the saved model's *pred*."""
@@ -215,7 +235,7 @@ def rollaway_risk(model: DrumModel, *, hand_force_N: float, grade_pct: float, di
     """
     from rollaway.hold import _effective, required_torque, tyre_adhesion_margin
     from rollaway.hold.numeric import Subset, first_slip_time
-    from rollaway.uncertainty.predictive import (edge_sd, extrapolation, measured_factor, model_error_draws,
+    from rollaway.uncertainty.predictive import (edge_sd, extrapolation, hold_sd, measured_factor, model_error_draws,
                                                  model_error_sd, start_error_draws)
 
     if not (isinstance(draws, (int, np.integer)) and 1 <= draws <= 1_000_000):
@@ -232,6 +252,8 @@ def rollaway_risk(model: DrumModel, *, hand_force_N: float, grade_pct: float, di
     factor, flags = extrapolation(pred, hand_force_N=float(hand_force_N), direction=direction, initial_temp_C=t0,
                                   duration_s=float(duration_s), zero_torque_force_N=f0, level_ratio=level)
     edge = edge_sd(pred, float(hand_force_N), f0, level)
+    unseen = unseen_hold_change(model, float(hand_force_N), sign, t0, float(duration_s))
+    hold = min(hold_sd(unseen), 1.0)
     rng = np.random.default_rng(seed)
     parts = mixture_parts(model, direction)
     counts = np.floor(np.array([w for w, _ in parts]) * draws).astype(int)
@@ -244,8 +266,8 @@ def rollaway_risk(model: DrumModel, *, hand_force_N: float, grade_pct: float, di
         own = own_record(pred, m)
         own_edge = edge if own is pred else edge_sd(own, float(hand_force_N), f0, level)
         own_measured = measured_factor(own, factor, float(hand_force_N), f0, level)
-        eps[owner == k] = model_error_draws(own, int(counts[k]), factor, rng, own_edge, own_measured)
-        extra = start_error_draws(own, int(counts[k]), factor, rng_start, own_edge, own_measured)
+        eps[owner == k] = model_error_draws(own, int(counts[k]), factor, rng, own_edge, own_measured, hold)
+        extra = start_error_draws(own, int(counts[k]), factor, rng_start, own_edge, own_measured, hold)
         starts.append(None if extra is None else (extra, own["model_error_start"]))
     brake = np.empty(draws)
     start_factor = np.ones(draws)
@@ -286,7 +308,8 @@ def rollaway_risk(model: DrumModel, *, hand_force_N: float, grade_pct: float, di
               "model_error": max(v_all - v_mix, 0.0) / total} if v_all > 0 else {}
     detail = {"shares": shares, "flags": flags, "extrapolation_factor": factor,
               "model_error_rel_sd": model_error_sd(pred, factor, edge,
-                                                   measured_factor(pred, factor, float(hand_force_N), f0, level)),
+                                                   measured_factor(pred, factor, float(hand_force_N), f0, level), hold),
+              "unseen_hold_change": unseen,
               "models": [{"name": m.name, "weight": float(w), "draws": int(c)} for (w, m), c in zip(parts, counts)],
               "half_width": _half_width(least), "carried_over": bool(carried_over(model, sign)),
               "start_decided": float(np.mean(start_factor != 1.0))}
@@ -302,14 +325,18 @@ def least_force_band(model: DrumModel, grades_pct, direction: str, occupants: in
     rear tyres slide or no force holds."""
     from rollaway.hold import _effective, required_torque, tyre_adhesion_margin
     from rollaway.hold.numeric import MarginFunction, least_hand_force
-    from rollaway.uncertainty.predictive import StartError, extrapolation, model_error_draws, start_error_draws
+    from rollaway.uncertainty.predictive import (StartError, extrapolation, hold_sd, model_error_draws,
+                                                 start_error_draws)
 
     grades = np.atleast_1d(np.asarray(grades_pct, float))
     rng = np.random.default_rng(seed)
     rng_start = np.random.default_rng(None if seed is None else (int(seed), 19))
     t0 = model.params.initial_drum_temp_C if initial_temp_C is None else float(initial_temp_C)
-    factor, _ = extrapolation(model.predictive, hand_force_N=float(np.mean(model.predictive.get(
-        "tested_hand_force_N", [250.0, 250.0]))), direction=direction, initial_temp_C=t0, duration_s=duration_s)
+    force = float(np.mean(model.predictive.get("tested_hand_force_N", [250.0, 250.0])))
+    factor, _ = extrapolation(model.predictive, hand_force_N=force, direction=direction, initial_temp_C=t0,
+                              duration_s=duration_s)
+    hold = min(hold_sd(unseen_hold_change(model, force, float(np.ravel(_effective(grades[:1], direction)[1])[0]), t0,
+                                          float(duration_s))), 1.0)
     parts = mixture_parts(model, direction)
     counts = np.floor(np.array([w for w, _ in parts]) * draws).astype(int)
     counts[0] += draws - counts.sum()
@@ -320,8 +347,8 @@ def least_force_band(model: DrumModel, grades_pct, direction: str, occupants: in
         vals = draw_values(m, int(c), None if seed is None else seed + k, untested_direction(model, direction)) \
             if m.covariance is not None else {}
         own = own_record(model.predictive, m)
-        eps = model_error_draws(own, int(c), factor, rng)
-        extra = start_error_draws(own, int(c), factor, rng_start)
+        eps = model_error_draws(own, int(c), factor, rng, hold=hold)
+        extra = start_error_draws(own, int(c), factor, rng_start, hold=hold)
         g, sign = _effective(grades, direction)
         t_req = np.asarray(required_torque(m.params, g, occupants), float)
         carry = carried_over(model, np.broadcast_to(sign, grades.shape))

@@ -18,6 +18,10 @@ TRANSDUCER_REL_SD = 0.001   # [assumed] the bench torque transducer's gain uncer
                              # common to every test, so no held-out score sees it, and it scales every road torque
 MAX_LEVEL_DISTANCE = 10.0    # a hand force at or below the one where the torque vanishes: the error is at most this far
 TOLERANCE = 0.02             # within 2 % of the span of a tested edge counts as tested
+UNSEEN_HOLD_SHARE = 0.3      # [assumed] the relative torque error of a hold longer than the bench's, as a share of
+                             # the change the model predicts over the untested part (:func:`hold_sd`): creep laws and
+                             # a radiating drum's cooling carried from 2-min tests to an hour erred by 0.2–0.4 of it
+                             # (tests/uncertainty/test_hold_extrapolation.py)
 
 
 def force_distance(tested_N, hand_force_N: float, zero_torque_force_N: float | None = None,
@@ -111,11 +115,23 @@ def measured_factor(pred: dict, factor: float, hand_force_N: float, zero_torque_
     return max(factor - min(dist, float(edge[1])), 1.0)
 
 
-def model_error_sd(pred: dict, factor: float, edge: float = 0.0, measured: float | None = None) -> float:
+def hold_sd(unseen_change: float) -> float:
+    """The relative torque error of a hold longer than the bench's tests: :data:`UNSEEN_HOLD_SHARE` of
+    *unseen_change*, the largest relative change of the calibrated model's torque between the end of the tested
+    hold and the end of the question's (:func:`rollaway.uncertainty.draws.unseen_hold_change`).  The bench saw
+    nothing of that change — the drum cooling on, a creep or a relaxation going on — so no held-out score measured
+    how well the model's laws carry it; the error scales with how much the model must carry, not with the bench's
+    noise (a dense log of short tests would otherwise give an hour's answer to a few parts in 10 000)."""
+    return UNSEEN_HOLD_SHARE * max(float(unseen_change), 0.0)
+
+
+def model_error_sd(pred: dict, factor: float, edge: float = 0.0, measured: float | None = None,
+                   hold: float = 0.0) -> float:
     """The relative torque error's scale for a question with extrapolation *factor* (see :func:`model_error_draws`):
-    √((rel_sd·measured)² + floor_rel_sd²·(UNSEEN² + (factor − 1)²)), and at least *edge* (:func:`edge_sd`: the
-    error the bench showed when it extrapolated in hand force, at the question's distance); *measured*
-    (:func:`measured_factor`) is *factor* unless the bench's own extrapolation in hand force covered part of it.
+    √((rel_sd·measured)² + floor_rel_sd²·(UNSEEN² + (factor − 1)²) + hold²), and at least *edge* (:func:`edge_sd`:
+    the error the bench showed when it extrapolated in hand force, at the question's distance); *measured*
+    (:func:`measured_factor`) is *factor* unless the bench's own extrapolation in hand force covered part of it;
+    *hold* (:func:`hold_sd`) the error of carrying the model beyond the bench's hold.
 
     The measured error (``rel_sd``) grows with the distance from the tested range.  An error the data could not
     see — below ``floor_rel_sd``, the noise's resolution of one test's held-out error — is counted too: a share
@@ -127,28 +143,28 @@ def model_error_sd(pred: dict, factor: float, edge: float = 0.0, measured: float
     floor = float(pred.get("model_error_floor_rel_sd", 0.0))
     gain = TRANSDUCER_REL_SD if "model_error_rel_sd" in pred else 0.0
     grown = sd * (factor if measured is None else measured)
-    return max(float(np.sqrt(grown ** 2 + floor ** 2 * (UNSEEN ** 2 + max(factor - 1.0, 0.0) ** 2) + gain ** 2)),
-               float(edge))
+    return max(float(np.sqrt(grown ** 2 + floor ** 2 * (UNSEEN ** 2 + max(factor - 1.0, 0.0) ** 2) + gain ** 2
+                             + hold ** 2)), float(edge))
 
 
 def model_error_draws(pred: dict, n: int, factor: float, rng: np.random.Generator, edge: float = 0.0,
-                      measured: float | None = None) -> np.ndarray:
+                      measured: float | None = None, hold: float = 0.0) -> np.ndarray:
     """n multiplicative torque errors ε (torque × (1 + ε)) of scale :func:`model_error_sd` (widened beyond the
-    tested range by *factor*, at least *edge*; *measured*: :func:`measured_factor`).
+    tested range by *factor*, at least *edge*; *measured*: :func:`measured_factor`; *hold*: :func:`hold_sd`).
 
     What is measured or extrapolated — ``rel_sd``·measured, the floor's growth with the distance beyond the tested
     range, or *edge* where that decides — is Student-t with the record's dof: a scale estimated from a handful of
     held-out tests, and stretched beyond them.  The share of the floor counted at every question
-    (:data:`UNSEEN`) and the transducer's gain are assumed magnitudes, not estimates: Gaussian, independent of
-    the rest.  (The Student-t on the growth keeps the 135 N questions, where the torque nearly vanishes, covered;
+    (:data:`UNSEEN`), the transducer's gain and the error beyond the bench's hold (*hold*) are assumed magnitudes,
+    not estimates: Gaussian, independent of the rest.  (The Student-t on the growth keeps the 135 N questions, where the torque nearly vanishes, covered;
     a Student-t on the unseen share too widened every question inside the tested range for no measured miss.)"""
-    sd = model_error_sd(pred, factor, edge, measured)
+    sd = model_error_sd(pred, factor, edge, measured, hold)
     if sd <= 0.0:
         return np.zeros(n)
     dof = max(int(pred.get("model_error_dof", 1)), 1)
     floor = float(pred.get("model_error_floor_rel_sd", 0.0))
     gain = TRANSDUCER_REL_SD if "model_error_rel_sd" in pred else 0.0
-    assumed = float(np.sqrt((UNSEEN * floor) ** 2 + gain ** 2))
+    assumed = float(np.sqrt((UNSEEN * floor) ** 2 + gain ** 2 + hold ** 2))
     if edge > 0.0 and float(edge) >= sd or assumed >= sd:
         assumed = 0.0 if edge > 0.0 and float(edge) >= sd else sd
     stretched = float(np.sqrt(max(sd * sd - assumed * assumed, 0.0)))
@@ -168,7 +184,7 @@ def start_weight(time_s, start) -> np.ndarray:
 
 
 def start_error_draws(pred: dict, n: int, factor: float, rng: np.random.Generator, edge: float = 0.0,
-                      measured: float | None = None) -> np.ndarray | None:
+                      measured: float | None = None, hold: float = 0.0) -> np.ndarray | None:
     """n relative torque errors at the start of the hold beyond the model error drawn for the whole hold
     (:func:`model_error_draws`), or None where the record has none to add: the start's held-out error
     (``model_error_start``, :func:`rollaway.uncertainty.bands.start_error`), widened as the measured error is
@@ -179,7 +195,7 @@ def start_error_draws(pred: dict, n: int, factor: float, rng: np.random.Generato
     if not start:
         return None
     grown = float(start[0]) * (factor if measured is None else measured)
-    extra = grown ** 2 - model_error_sd(pred, factor, edge, measured) ** 2
+    extra = grown ** 2 - model_error_sd(pred, factor, edge, measured, hold) ** 2
     if extra <= 0.0:
         return None
     dof = max(int(pred.get("model_error_dof", 1)), 1)
@@ -201,5 +217,5 @@ class StartError:
         return self.fn(time_s, i, force_N) * (1.0 + self.extra[i] * start_weight(time_s, self.start))
 
 
-__all__ = ["StartError", "edge_sd", "extrapolation", "force_distance", "measured_factor", "model_error_draws",
-           "model_error_sd", "record", "start_error_draws", "start_weight", "validate"]
+__all__ = ["StartError", "edge_sd", "extrapolation", "force_distance", "hold_sd", "measured_factor",
+           "model_error_draws", "model_error_sd", "record", "start_error_draws", "start_weight", "validate"]
