@@ -6,7 +6,8 @@
 
 A chunk ``kind:start:n`` is *n* campaigns of :mod:`tests.uncertainty.band_questions` from *start*; *kind* is a
 sampling (``5min``, ``1min``, ``15min``, ``irregular``, ``1Hz``, ``10Hz``: :func:`campaign_data`), ``rot`` + a
-sampling (:func:`rotated_campaign_data`) or ``two`` (:func:`two_effect_data`).  Each chunk's rows are written to
+sampling (:func:`rotated_campaign_data`), ``two`` (:func:`two_effect_data`) or ``short`` (tests of 12–1200 s:
+:func:`short_campaign_data`, not in the default chunks).  Each chunk's rows are written to
 ``OUT/TAG/kind_start_n.json`` as soon as it ends, and a chunk already written is not run again, so an interrupted
 suite keeps what it did and goes on from there.
 """
@@ -40,6 +41,8 @@ def run_chunk(spec: str, path: str) -> tuple[str, float, int]:
     for i in range(int(start), int(start) + int(n)):
         if kind == "two":
             rows += campaign(i, two=True)
+        elif kind == "short":
+            rows += campaign(i, short=True)
         elif kind.startswith("rot"):
             rows += campaign(i, sampling=kind[3:], rotated=True)
         else:

@@ -115,6 +115,11 @@ class Risk:
         if (self.detail or {}).get("carried_over"):
             beyond += ("; its torque carried over from the tested direction with the friction coefficient drawn "
                        "apart from mu_drum (one direction pins the torque scale only)")
+        unseen = (self.detail or {}).get("unseen_hold_change", 0.0)
+        if unseen > 0.0:
+            from rollaway.uncertainty.predictive import hold_sd
+            beyond += (f"; after the bench's longest test the model's torque moves {unseen:.0%} more, unseen: that "
+                       f"counts as an error of ±{min(hold_sd(unseen), 1.0):.1%} (1σ)")
         start = (self.detail or {}).get("start_decided", 0.0)
         if start > 0.0:
             beyond += (f"; the start of the hold decides {start:.0%} of the draws, which take the held-out error of "
