@@ -7,7 +7,7 @@
 A chunk ``kind:start:n`` is *n* campaigns of :mod:`tests.uncertainty.band_questions` from *start*; *kind* is a
 sampling (``5min``, ``1min``, ``15min``, ``irregular``, ``1Hz``, ``10Hz``: :func:`campaign_data`), ``rot`` + a
 sampling (:func:`rotated_campaign_data`), ``two`` (:func:`two_effect_data`) or ``short`` (tests of 12–1200 s:
-:func:`short_campaign_data`, not in the default chunks).  Each chunk's rows are written to
+:func:`short_campaign_data`).  Each chunk's rows are written to
 ``OUT/TAG/kind_start_n.json`` as soon as it ends, and a chunk already written is not run again, so an interrupted
 suite keeps what it did and goes on from there.
 """
@@ -29,7 +29,7 @@ DEFAULT = ([f"5min:{s}:24" for s in range(0, 144, 24)] + [f"1min:{s}:24" for s i
            + [f"15min:{s}:24" for s in range(0, 96, 24)] + ["irregular:0:24", "irregular:24:24"]
            + [f"rot5min:{s}:24" for s in range(0, 96, 24)] + [f"rot1min:{s}:24" for s in range(0, 48, 24)]
            + [f"rot15min:{s}:24" for s in range(0, 72, 24)] + [f"two:{s}:24" for s in range(0, 288, 24)]
-           + ["1Hz:0:12", "1Hz:12:12", "10Hz:0:12"])
+           + ["1Hz:0:12", "1Hz:12:12", "10Hz:0:12"] + [f"short:{s}:12" for s in range(0, 48, 12)])
 
 
 def run_chunk(spec: str, path: str) -> tuple[str, float, int]:
