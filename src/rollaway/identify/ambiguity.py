@@ -185,14 +185,18 @@ def closest(base, candidates: list, base_cv, threshold: float, validity: dict, n
     held_out_against = not ok and not cleared      # none predicts held-out tests better (few tests: each left out
     pool = ok or [c for c in strong if c.effect not in cleared]           # is an extrapolation)
     pool = [c for c in strong if c.effect in cleared and c not in pool] + pool
+    ranked = sorted(pool, key=lambda c: (c.effect not in cleared, forms[c.effect][1]))[:MAX_RIVALS]
+    bic_only = _bic_beyond_heldout(ranked, strong, forms) if ok else []
     out = []
-    for c in sorted(pool, key=lambda c: (c.effect not in cleared, forms[c.effect][1]))[:MAX_RIVALS]:
+    for c in ranked + bic_only:
         elpd, se = heldout_difference(base, c.fit)
         why = (f"ΔBIC {c.delta_bic:.1f} and held-out log score {elpd:+.1f} ± {se:.1f} against the drum alone"
-               + (" (the held-out prediction does not support it)" if held_out_against else ""))
+               + (" (the held-out prediction does not support it)" if held_out_against or c in bic_only else ""))
         a = {"kind": "closest", "effects": [c.effect], "delta_bic": float(c.delta_bic), "heldout_elpd": elpd,
              "heldout_se": se, "fit": c.fit, "clears": c.effect in cleared, "why": why,
              "form_delta_bic": forms[c.effect][1]}
+        if c in bic_only:       # named on the evidence of every test together; drawn in the bands it is not
+            a["bands"] = False
         if c.effect in shapes:
             fit = shapes[c.effect][0]
             dbic = float(fit.bic - base.bic)
@@ -209,6 +213,19 @@ def closest(base, candidates: list, base_cv, threshold: float, validity: dict, n
     for a in out:
         a["tell_apart"] = words
     return out
+
+
+def _bic_beyond_heldout(ranked: list, strong: list, forms: dict) -> list:
+    """Candidates of *strong* that BIC prefers to every one of *ranked* (those the held-out tests support), up to
+    :data:`MAX_RIVALS` in all: with a few tests, each one left out is an extrapolation (another T₀, a hand force
+    beyond the others), and a form that explains all the tests together far better than the drum and than the
+    supported ones is a closest effect too — named beside them, not weighed into the bands (its held-out score
+    does not support it)."""
+    if not ranked or len(ranked) >= MAX_RIVALS:
+        return []
+    bar = min(forms[c.effect][1] for c in ranked)
+    more = [c for c in strong if c not in ranked and forms[c.effect][1] < bar - INDISTINGUISHABLE_BIC]
+    return sorted(more, key=lambda c: forms[c.effect][1])[:MAX_RIVALS - len(ranked)]
 
 
 def weak_alternatives(plan, base, candidates: list, validity: dict, noise_torque_Nm: float) -> list[dict]:
@@ -283,7 +300,10 @@ def _closest_clause(alternatives: list[dict]) -> tuple[str, str]:
     between = f"these data cannot tell them apart; {words}" if len(names) > 1 else ""
     gap = (abs(alternatives[1]["form_delta_bic"] - alternatives[0]["form_delta_bic"])
            if len(names) > 1 and all("form_delta_bic" in a for a in alternatives[:2]) else 0.0)
-    if gap > INDISTINGUISHABLE_BIC:      # the tested conditions already separate them: no test to propose
+    if len(names) > 1 and alternatives[1].get("bands", True) is False:      # _bic_beyond_heldout's
+        between = (f"BIC prefers {names[1]} (lower by {gap:.1f}), the held-out tests {names[0]} — with so few tests "
+                   f"each one left out is an extrapolation; {words}")
+    elif gap > INDISTINGUISHABLE_BIC:      # the tested conditions already separate them: no test to propose
         tested = alternatives[0]["tell_apart"].get("tested_difference_Nm")
         between = (f"these data tell them apart (BIC {gap:.1f} apart"
                    + (f"; torques up to {tested:.3g} N·m apart over the tested conditions" if tested else "")
