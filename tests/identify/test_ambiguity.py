@@ -99,6 +99,29 @@ def test_two_closest_forms_the_data_separate_are_not_called_indistinguishable():
     assert "these data tell them apart" in alternative_words("none", alts(-83.6, -32.5))[0]
 
 
+def test_a_form_bic_prefers_far_beyond_the_heldout_supported_one_is_named_beside_it_not_drawn():
+    """With few tests each one left out is an extrapolation: a closest form the held-out tests support is joined by
+    one that BIC prefers by more than INDISTINGUISHABLE_BIC — flagged as such, out of the bands, and the line says
+    which evidence prefers which; one within that margin, or worse, is not added."""
+    from rollaway.identify.ambiguity import _bic_beyond_heldout
+    forms = {"drum_radial_contraction": (None, -170.0, False), "modulus_temperature": (None, -236.0, False),
+             "shoe_thermal_lag": (None, -95.0, False), "friction_temperature": (None, -174.0, False)}
+    cands = {n: _cand(n, f[1], np.zeros(16)) for n, f in forms.items()}
+    supported = [cands["drum_radial_contraction"]]
+    added = _bic_beyond_heldout(supported, list(cands.values()), forms)
+    assert [c.effect for c in added] == ["modulus_temperature"]          # −174 is within 6 of −170: not added
+    assert _bic_beyond_heldout([], list(cands.values()), forms) == []
+    assert _bic_beyond_heldout(supported + [cands["shoe_thermal_lag"]], list(cands.values()), forms) == []   # full
+    tell = {"words": "a test facing uphill at 405 N would", "tested_difference_Nm": 129.0}
+    line = verdict_line("none", [
+        {"kind": "closest", "effects": ["drum_radial_contraction"], "form_delta_bic": -170.0, "tell_apart": tell,
+         "why": "ΔBIC"},
+        {"kind": "closest", "effects": ["modulus_temperature"], "form_delta_bic": -236.0, "tell_apart": tell,
+         "why": "ΔBIC", "bands": False}])
+    assert "BIC prefers modulus_temperature (lower by 66.0), the held-out tests drum_radial_contraction" in line, line
+    assert "is the nearer" not in line, line
+
+
 def test_the_verdict_line_sets_every_named_effect_against_an_alternative_that_replaces_one_of_them():
     named = ["friction_temperature", "cable_relaxation"]
     alts = [{"effects": ["friction_temperature", "shoe_thermal_lag"], "why": "with a spline in time_s …",
