@@ -167,7 +167,8 @@ def closest(base, candidates: list, base_cv, threshold: float, validity: dict, n
     them and ranks before those that leave it: the quantity it changes explains the data, in a shape the catalogue
     does not write.
     ``"shape_fit"`` then holds the shape-free fit, and the test that would tell two apart compares their better
-    forms."""
+    forms.  Where fewer than :data:`MAX_RIVALS` predict held-out tests better, a form BIC prefers far beyond them
+    joins them (:func:`_bic_beyond_heldout`; ``"bands": False``, no ``"shape_fit"``)."""
     if base.jacobian is None:
         return []
     shapes = shapes or {}
@@ -201,7 +202,8 @@ def closest(base, candidates: list, base_cv, threshold: float, validity: dict, n
             fit = shapes[c.effect][0]
             dbic = float(fit.bic - base.bic)
             e2, se2 = heldout_difference(base, fit)
-            a["shape_fit"] = fit
+            if c not in bic_only:           # (a form of the model's own among the bands' forms: not this one)
+                a["shape_fit"] = fit
             a["why"] += (f"; shape-free ΔBIC {dbic:.1f}, held-out {e2:+.1f} ± {se2:.1f}, "
                          + ("clears the structure" if c.effect in cleared else "leaves structure"))
         out.append(a)
