@@ -53,3 +53,14 @@ def test_repr_html(creep_csv):
     fit = calibrate(load_measurements(creep_csv), ["lining_creep"])
     h = fit._repr_html_()
     assert "<table>" in h and "lining_creep.relaxed_fraction" in h
+
+
+def test_the_design_case_says_when_its_hold_lies_beyond_the_benchs(tmp_path):
+    """The design sentence of a campaign of 2-min tests says the 300 s case lies beyond them; hour-long tests not."""
+    from rollaway.identify.calibrate import calibrate
+    from rollaway.identify.report import design_section
+    short = calibrate(synth(seed=5, dt_s=10.0, duration_s=120.0))
+    long = calibrate(synth(seed=5))
+    said = design_section([("calibrated paper model", short)])[0]
+    assert "Beyond the bench data: its tests lasted at most 120 s" in said, said
+    assert "Beyond the bench data" not in design_section([("calibrated paper model", long)])[0]
