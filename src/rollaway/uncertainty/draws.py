@@ -195,7 +195,8 @@ def unseen_hold_change(model: DrumModel, hand_force_N: float, sign: float, initi
     """The largest relative change of the calibrated model's torque between the end of the bench's longest test
     (the predictive record's ``tested_duration_s``) and *duration_s*, against its torque there (same hand force,
     direction *sign* and start temperature): what a hold longer than the bench's asks the model to carry unseen
-    (:func:`rollaway.uncertainty.predictive.hold_sd`).  0 within the tested hold; inf where the torque there is none."""
+    (:func:`rollaway.uncertainty.predictive.hold_sd`).  0 within the tested hold; inf where the torque there is none
+    or the model gives none it can count (the error is then capped where it is used)."""
     from rollaway.hold.numeric import MarginFunction
     from rollaway.uncertainty.predictive import TOLERANCE
     tested = model.predictive.get("tested_duration_s")
@@ -205,7 +206,7 @@ def unseen_hold_change(model: DrumModel, hand_force_N: float, sign: float, initi
                         initial_temp_C)
     t = np.linspace(float(tested), float(duration_s), points)
     torque = np.asarray(fn(t, np.zeros(points, int)), float)
-    if not (np.isfinite(torque[0]) and torque[0] > 0.0):
+    if not (np.all(np.isfinite(torque)) and torque[0] > 0.0):
         return float("inf")
     return float(np.max(np.abs(torque / torque[0] - 1.0)))
 
