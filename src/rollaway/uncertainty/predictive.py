@@ -21,7 +21,7 @@ TOLERANCE = 0.02             # within 2 % of the span of a tested edge counts as
 UNSEEN_HOLD_SHARE = 0.3      # [assumed] the relative torque error of a hold longer than the bench's, as a share of
                              # the change the model predicts over the untested part (:func:`hold_sd`): creep laws and
                              # a radiating drum's cooling carried from 2-min tests to an hour erred by 0.2–0.4 of it
-                             # (tests/uncertainty/test_hold_extrapolation.py)
+                             # (tests/uncertainty/test_predictive.py)
 
 
 def force_distance(tested_N, hand_force_N: float, zero_torque_force_N: float | None = None,

@@ -1,7 +1,7 @@
-"""A hold longer than the bench's tests: the error of the change the model carries unseen
-(rollaway.uncertainty.predictive.hold_sd, rollaway.uncertainty.draws.unseen_hold_change), against the truth of
-the independent generator's short-test campaigns (tests/uncertainty/band_questions.py: 2-min to 20-min tests,
-hidden creep, relaxation and radiating drums the catalogue writes in other forms)."""
+"""rollaway.uncertainty.predictive: the error of a hold longer than the bench's tests (hold_sd) on the change the
+model carries unseen (rollaway.uncertainty.draws.unseen_hold_change), against the truth of the independent
+generator's short-test campaigns (tests/uncertainty/band_questions.py: 12 s to 20-min tests, hidden creep,
+relaxation and radiating drums in forms the catalogue lacks)."""
 import os
 
 import numpy as np
