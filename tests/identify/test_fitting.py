@@ -223,3 +223,20 @@ def test_kaufmans_columns_are_the_exact_ones_where_the_model_fits():
     fast = [(r - f0) / h for r, h in zip(prob.linearised_profiles(base, many), steps)]
     for name, a, b in zip(names, exact, fast):
         assert np.linalg.norm(a - b) <= 0.02 * np.linalg.norm(a), name
+
+
+@pytest.mark.parametrize("seed", [7, 8])
+def test_passes_caps_the_passes_between_the_per_test_updates(seed, monkeypatch):
+    """``calibrate(..., passes=1)`` runs the globals' solver once (a fold's refit, which starts where the full fit
+    ended, needs no more); by default a fit whose per-test T_0 moved runs it again from the updated T_0, and both
+    end near each other."""
+    data = generate(["radiation"], sampling="5min", seed=seed)
+    runs = []
+    real = fitting.levenberg_marquardt
+    monkeypatch.setattr(fitting, "levenberg_marquardt", lambda *a, **k: runs.append(1) or real(*a, **k))
+    full = calibrate(data, ["radiation_cooling"])
+    n_full, runs[:] = len(runs), []
+    one = calibrate(data, ["radiation_cooling"], passes=1)
+    assert n_full >= 2 and len(runs) == 1
+    assert one.bic == pytest.approx(full.bic, abs=0.5)     # equal to 0.01 measured
+    assert one.values["mu_drum"] == pytest.approx(full.values["mu_drum"], rel=1e-3)

@@ -170,7 +170,8 @@ def _noise_weights(data: Measurements, model: BenchModel, values: dict) -> tuple
 @single_blas_thread
 def calibrate(data: Measurements, effects=(), params=None, *, free=None, start: dict | None = None,
               model: BenchModel | None = None, per_test: bool = True, statistics: bool = True,
-              max_iterations: int | None = None, give_up_bic: float | None = None) -> FitResult:
+              max_iterations: int | None = None, give_up_bic: float | None = None,
+              passes: int | None = None) -> FitResult:
     """Fit μ_d, h, every parameter of *effects* and each test's T_0 to *data* (both channels jointly).
 
     *free* restricts the fitted global names (others stay at *start*/neutral); *start* gives
@@ -180,22 +181,25 @@ def calibrate(data: Measurements, effects=(), params=None, *, free=None, start: 
     model attached to *data* (``torque_sigma_Nm``, ``temp_sigma_C``) or one estimated from it.
     *give_up_bic*: a fit that only matters below this BIC (a screen against a known one) is abandoned once its
     remaining budget cannot bring it there (:func:`rollaway.identify.solver.futile`): it then ends above it, not
-    converged (``fit_info["gave_up"]``: the bar).
+    converged (``fit_info["gave_up"]``: the bar).  *passes*: at most this many passes of the globals between the
+    per-test values' Gauss–Newton updates (default :data:`~rollaway.identify.fitting.MAX_OUTER`).
     """
     from rollaway.identify import memo
     k = memo.key(data, effects, params, dict(free=free, start=start, model=model, per_test=per_test,
-                                             statistics=statistics, max_iterations=max_iterations))
+                                             statistics=statistics, max_iterations=max_iterations,
+                                             **({} if passes is None else {"passes": passes})))
     kept = memo.lookup(k)            # a fit given up below one bar answers a call with that bar or a lower one
     if kept is not None and (kept.fit_info.get("gave_up") is None
                              or give_up_bic is not None and give_up_bic <= kept.fit_info["gave_up"]):
         return kept
-    fit = _calibrate(data, effects, params, free, start, model, per_test, statistics, max_iterations, give_up_bic)
+    fit = _calibrate(data, effects, params, free, start, model, per_test, statistics, max_iterations, give_up_bic,
+                     passes)
     memo.store(k, fit)
     return fit
 
 
 def _calibrate(data, effects, params, free, start, model, per_test, statistics, max_iterations,
-               give_up_bic=None) -> FitResult:
+               give_up_bic=None, passes=None) -> FitResult:
     model = model or BenchModel(params, effects)
     init = model.initial_values()
     families = model.per_test_parameters() if per_test else []
@@ -219,8 +223,8 @@ def _calibrate(data, effects, params, free, start, model, per_test, statistics, 
     if give_up_bic is not None:          # the BIC's log-likelihood term, its penalty (FitResult.k) taken off
         k = len(names) + sum(data.n_tests for f in families if f != INITIAL_TEMP)
         bar = float(give_up_bic) - k * math.log(2 * len(data))
-    sol = prob.solve(init, jacobian=statistics, give_up_loglik=bar, **({} if max_iterations is None else
-                                                                       {"max_iterations": max_iterations}))
+    sol = prob.solve(init, jacobian=statistics, give_up_loglik=bar, passes=passes,
+                     **({} if max_iterations is None else {"max_iterations": max_iterations}))
     fit = _result(model, data, sol, prob, names, families, statistics)
     if sol.gave_up:
         fit.fit_info["gave_up"] = float(give_up_bic)

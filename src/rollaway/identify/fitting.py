@@ -239,7 +239,8 @@ class Problem:
         return [(r[i], steps[i], [gm[i, :, a] for a in range(m)], normal[i]) for i in range(n)]
 
     def solve(self, start: dict, tol: float | None = None, jacobian: bool = True,
-              max_iterations: int = MAX_ITERATIONS, give_up_loglik: float | None = None) -> Solution:
+              max_iterations: int = MAX_ITERATIONS, give_up_loglik: float | None = None,
+              passes: int | None = None) -> Solution:
         """Fit the globals (and per-test families); *jacobian*: also the projected Jacobian for errors.
 
         The globals are fitted by MINPACK's Levenberg–Marquardt (:func:`levenberg_marquardt`: as
@@ -259,6 +260,7 @@ class Problem:
         iterations on digits no criterion reads.
         *give_up_loglik*: abandon the fit (:func:`futile`) once it cannot bring the information criteria's
         log-likelihood term below this value within its remaining budget; None: never.
+        *passes*: at most this many passes (default :data:`MAX_OUTER`).
         """
         model, names = self.model, self.names
         tol = TOLERANCE if tol is None else tol
@@ -275,7 +277,8 @@ class Problem:
             return lo + (hi - lo) * (np.sin(zz) + 1.0) / 2.0
 
         gave_up = False
-        for outer in range(MAX_OUTER):
+        outers = MAX_OUTER if passes is None else max(1, min(int(passes), MAX_OUTER))
+        for outer in range(outers):
             fixed = dict(vals)
 
             def fun(zz):
@@ -293,7 +296,7 @@ class Problem:
 
             if names:
                 budget = max_iterations * (len(names) + 1)
-                later = (MAX_OUTER - outer - 1) * budget if self.families else 0
+                later = (outers - outer - 1) * budget if self.families else 0
                 stop = None if give_up_loglik is None else futile(give_up_loglik, later)
                 z, gave_up = levenberg_marquardt(fun, columns, z, tol, budget, stop)
                 vals.update(zip(names, to_x(z)))
