@@ -26,8 +26,9 @@ HELD_TOLERANCE = 0.1          # a linear step whose held-out χ² the model at t
 FOLD_ITERATIONS = 2           # a fold's refit budget: FOLD_ITERATIONS·(k + 1) residual calls per pass, from the
                               # full fit [assumed: 1, 2 and 8 gave the same decisions on the campaigns measured]
 FOLD_PASSES = 1               # … and at most this many passes between the training tests' T_0 updates (of the
-                              # fit's MAX_OUTER): the training tests' T_0 start at the full fit's values [assumed: the same
-                              # verdicts on the 816 names campaigns of docs/identification.md, 55–60 % less time]
+                              # fit's MAX_OUTER): the training tests' T_0 start at the full fit's values [assumed:
+                              # the same verdicts on the 816 names campaigns of docs/identification.md, 55–60 % less
+                              # time]
 
 
 def _standardised(data, prediction) -> np.ndarray:
