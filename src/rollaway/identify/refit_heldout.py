@@ -10,8 +10,9 @@ Where that comparison decides whether an effect is *named* — a second effect a
 (:mod:`rollaway.identify.partner`) — each fold's linear step is checked by one model evaluation
 (:func:`linear_holds`): the step is kept when it stays within the parameters' bounds and the model there gives
 the held-out tests the χ² the linearisation predicts; otherwise the fold is refitted: the globals on the other
-tests (started at the full fit, :data:`FOLD_ITERATIONS`, in :data:`FOLD_PASSES` pass), then the held-out tests' own values (T_0, per-test
-effect values) on those tests with the globals fixed, as the linearisation profiles them.
+tests (started at the full fit, :data:`FOLD_ITERATIONS`, in :data:`FOLD_PASSES` pass), then the held-out tests'
+own values (T_0, per-test effect values) on those tests with the globals fixed, as the linearisation profiles
+them.
 """
 from __future__ import annotations
 
