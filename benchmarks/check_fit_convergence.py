@@ -8,9 +8,10 @@ The logs are those of ``benchmarks/bench_diagnose.py --short-high-rate`` (by the
 to CSV and read as the CLI reads them (reduced to window means).  Each fit's problem (:class:`rollaway.identify.fitting.
 Problem`: the model, the data, its free parameters, the start and the options) is captured as ``diagnose`` poses it,
 then solved twice more in this process: with its own budget (the reference: the same numbers) and with *factor* times
-the iterations per pass.  Printed: how many fits end more than 1, 10 and 50 in χ² (the sum of squared standardised
-residuals, the unit of the BIC differences the selection decides on) above the larger budget's end, and the
-evaluations each took.  A measure for a change of the minimiser (``rollaway.identify.solver``); not a test.
+the iterations per pass.  Printed, for the fits with the full budget and for those with short budgets of their own
+(screens, re-formed fits: short on purpose): how many end more than 1, 10 and 50 in χ² (the sum of squared
+standardised residuals, the unit of the BIC differences the selection decides on) above the larger budget's end,
+and the evaluations each took.  A measure for a change of the minimiser (``rollaway.identify.solver``); not a test.
 """
 from __future__ import annotations
 
@@ -81,15 +82,20 @@ def main(argv=None):
         caught = captured_problems(paths)
     own = [refit(*c, 1.0) for c in caught]
     more = [refit(*c, a.factor) for c in caught]
-    kept = [i for i, (o, m) in enumerate(zip(own, more)) if not o[2] and not m[2]]    # given-up screens left out
-    excess = np.array([own[i][0] - more[i][0] for i in kept])
-    e_own, e_more = sum(own[i][1] for i in kept), sum(more[i][1] for i in kept)
-    print(f"logs {', '.join(tags)}: {len(caught)} fits, {len(kept)} compared (screens given up left out)")
-    print(f"χ² above the end with {a.factor:g}× the budget: more than 1 in {int((excess > 1).sum())}, more than 10 "
-          f"in {int((excess > 10).sum())}, more than 50 in {int((excess > 50).sum())}; largest {excess.max():.1f}, "
-          f"median {np.median(excess):.3g}; below it (the larger budget ended higher) in {int((excess < -1).sum())}")
-    print(f"evaluations (value sets of the model): {e_own} with the fits' own budgets, {e_more} with {a.factor:g}× "
-          f"(ratio {e_more / max(e_own, 1):.2f})")
+    from rollaway.identify.fitting import MAX_ITERATIONS
+    print(f"logs {', '.join(tags)}: {len(caught)} fits (screens given up against a bar left out)")
+    full = [c[3].get("max_iterations", MAX_ITERATIONS) >= MAX_ITERATIONS for c in caught]
+    for label, want in ((f"full budget ({MAX_ITERATIONS} iterations per parameter and pass)", True),
+                        ("short budgets (screens, re-formed fits)", False)):
+        kept = [i for i, (o, m) in enumerate(zip(own, more)) if not o[2] and not m[2] and full[i] == want]
+        if not kept:
+            continue
+        excess = np.array([own[i][0] - more[i][0] for i in kept])
+        e_own, e_more = sum(own[i][1] for i in kept), sum(more[i][1] for i in kept)
+        print(f"{label}, {len(kept)} fits: χ² above the end with {a.factor:g}× the budget more than 1 in "
+              f"{int((excess > 1).sum())}, more than 10 in {int((excess > 10).sum())}, more than 50 in "
+              f"{int((excess > 50).sum())}; largest {excess.max():.1f}; below it in {int((excess < -1).sum())}; "
+              f"evaluations {e_own} → {e_more} (ratio {e_more / max(e_own, 1):.2f})")
 
 
 if __name__ == "__main__":
