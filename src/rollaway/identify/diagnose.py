@@ -40,7 +40,8 @@ from rollaway.identify.intervals import covariance_variances, ess_inflation, mix
 from rollaway.bench.measurements import Measurements
 from rollaway.bench.noise import Noise, noise_estimate, sample_sigma
 from rollaway.identify.detection import detection_limits, hidden_shifts, hidden_words, limits_words
-from rollaway.identify.diagnose_words import describe_residual, no_candidate_words, noise_words, structure_words
+from rollaway.identify.diagnose_words import (describe_residual, drum_words, no_candidate_words, noise_words,
+                                             structure_words)
 from rollaway.identify.offsets import offsets_rival
 from rollaway.identify.partner import beside_partial, own_evidence, stood_for, unsure_second
 from rollaway.identify.predictive_set import attach_predictive, interval_words
@@ -97,7 +98,7 @@ def diagnose(data: Measurements, params=None, effects=None, *, noise_torque_Nm: 
           f"Each test's start temperature T_0 is fitted with the rest (t = 0 readings are measurements, "
           f"not exact values).",
           f"Paper defaults: torque RMSE {paper.rmse_torque_Nm:.3g} N·m, temperature RMSE {paper.rmse_temp_C:.3g} °C. "
-          f"Calibrated drum ({', '.join(f'{n} = {base.values[n]:.4g}' for n in drum.free) or 'nothing freed'}): "
+          f"Calibrated drum ({drum_words(base, drum.free)}): "
           f"{base.rmse_torque_Nm:.3g} N·m and {base.rmse_temp_C:.3g} °C; "
           + describe_residual(base, "torque") + "; " + describe_residual(base, "temperature") + "."]
     current, chosen, steps, fits = base, [], [], []
@@ -174,8 +175,7 @@ def diagnose(data: Measurements, params=None, effects=None, *, noise_torque_Nm: 
                   f"(a pair needs {-PAIR_BIC:g}) with held-out error {base_cv:.1f} → {cv:.1f} (pair_path): each may "
                   f"have pulled the free drum against the other's signature.  The pair faces the tests of any pair.")
     if len(chosen) >= 2:
-        chosen, current, struct, swaps = exchange(data, params, names, chosen, current, struct, nq, nt,
-                                                  known=known)
+        chosen, current, struct, swaps = exchange(data, params, names, chosen, current, struct, nq, nt, known=known)
         chosen, current, struct, removed = eliminate(data, params, chosen, current, struct, nq, nt)
         swaps += [(a, "nothing", d) for a, d in removed]
         if swaps:

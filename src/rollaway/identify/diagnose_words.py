@@ -32,6 +32,18 @@ def no_candidate_words(cands, strong, cur_cv) -> str:
     return "No candidates were given."
 
 
+def drum_words(fit: FitResult, free) -> str:
+    """The calibrated drum's freed brake parameters *free* as ``name = value``, each at a bound of its range said so:
+    the bare drum can push one there to stand in for an effect it lacks (μ_d against the eq. (24) slope, offset and
+    arm ratio), so the value is not the drum's own; the "Your drum" table gives them with the verdict's effects."""
+    out = []
+    for n in free:
+        e = fit.estimates.get(n)
+        out.append(f"{n} = {fit.values[n]:.4g}" + (f" (its {e.at_bound} bound: the bare drum leans on it for what it "
+                                                   f"lacks)" if e and e.at_bound else ""))
+    return ", ".join(out) or "nothing freed"
+
+
 def describe_residual(fit: FitResult, channel: str) -> str:
     rt, rq = fit.residuals()
     r = rq if channel == "torque" else rt
