@@ -107,8 +107,15 @@ class Problem:
             data = self._copies[c] = stack_copies(self.data, c)
         nt = self.data.n_tests
         vals = {}
+        rest = sets[1:]
         for k, x in sets[0].items():
-            col = [s[k] for s in sets]
+            if all(s[k] is x for s in rest):          # the same object in every set (most values)
+                if type(x) is np.ndarray and x.ndim == 1:
+                    vals[k] = np.concatenate([x] * c)
+                else:
+                    vals[k] = x
+                continue
+            col = [x] + [s[k] for s in rest]
             if isinstance(x, np.ndarray) and x.ndim == 1:
                 vals[k] = np.concatenate(col)
             elif x is not None and np.ndim(x) == 0 and col.count(x) < c:    # count: by identity, else ==

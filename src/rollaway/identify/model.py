@@ -228,6 +228,8 @@ def per_sample(value, data: Measurements) -> np.ndarray | float:
 def _number(value, data: Measurements) -> np.ndarray | float:
     """A parameter's value for the chain: one number, or one per test (per-test parameters; globals of several
     value sets evaluated at once on stacked copies of the data) expanded to every sample."""
+    if isinstance(value, float):      # the common case (numpy's float64 too), without numpy's dispatch
+        return float(value)
     return float(value) if np.ndim(value) == 0 else per_sample(value, data)
 
 

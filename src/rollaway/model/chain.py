@@ -56,7 +56,7 @@ def _broadcast(a, shape) -> np.ndarray:
     shape already or is one number."""
     if type(a) is np.ndarray and (a.shape == shape or a.ndim == 0):
         v = a.view() if a.ndim else np.full(shape, a, a.dtype)
-        v.flags.writeable = False
+        v.setflags(write=False)
         return v
     return np.broadcast_to(a, shape)
 
@@ -72,6 +72,8 @@ def _common_shape(*shapes) -> tuple:
 def direction_to_sign(direction) -> np.ndarray:
     """+1 facing downhill (eq. 18), −1 uphill (eq. 19); accepts names or numeric signs."""
     d = np.asarray(direction)
+    if d.dtype == np.float64:          # the fits' case: signs already (the same numbers, without a copy)
+        return np.where(d < 0, -1.0, 1.0)
     if d.dtype.kind in "biuf":
         return np.where(d.astype(float) < 0, -1.0, 1.0)
     return drum.direction_sign(direction)
