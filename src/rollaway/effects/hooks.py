@@ -39,7 +39,7 @@ def call_hook(effect: Effect, hook: str, state: ModelState, x, v: dict, scalar_o
         if not ok:
             raise UserError(f"{effect_label(effect)}: hook '{hook}' returned shape {arr.shape} for {state.time_s.shape} "
                             f"samples; return an array shaped like its input")
-    if math.isfinite(arr.sum()):              # the common case: every value finite (a NaN or an inf makes the sum so)
+    if math.isfinite(arr.sum()):       # the common case: every value finite (a NaN or an inf makes the sum so)
         return out
     finite_out = np.isfinite(arr)
     if finite_out.all():                      # finite values whose sum overflows
