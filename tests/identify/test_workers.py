@@ -114,3 +114,62 @@ def test_outside_the_main_thread_the_fits_stay_in_process(data, monkeypatch):
     t.start()
     t.join()
     assert [f.effects for f in out[0]] == [["lining_creep"], ["cable_relaxation"]]
+
+
+def _counted_fits(monkeypatch) -> list:
+    """Patch the fit itself to count the fits this process makes (a forked process counts its own)."""
+    import rollaway.identify.calibrate as cal
+    made, real = [], cal._calibrate
+    monkeypatch.setattr(cal, "_calibrate", lambda *a: made.append(a[1]) or real(*a))
+    return made
+
+
+def test_a_fit_started_ahead_is_the_fit_made_here_and_is_not_made_again(data, monkeypatch):
+    import os
+    from rollaway.identify import memo
+    job = (["lining_creep"], None, dict(max_iterations=6))
+    monkeypatch.setenv("ROLLAWAY_WORKERS", "1")
+    here = calibrate(data, job[0], job[1], **job[2])
+    monkeypatch.setenv("ROLLAWAY_WORKERS", "2")
+    made = _counted_fits(monkeypatch)
+    pids, real = [], workers._fork
+    monkeypatch.setattr(workers, "_fork", lambda: (lambda pid: pids.append(pid) or pid)(real()))
+    with memo.fit_memo():
+        workers.ahead(data, [job])
+        assert len(pids) == 1 and memo.known(memo.key(data, job[0], job[1], workers._full(job[2])))
+        workers.ahead(data, [job])                           # expected already: no second process
+        assert len(pids) == 1
+        fit_all(data, [(["cable_relaxation"], None, dict(max_iterations=3)),     # a batch in between
+                       (["friction_temperature"], None, dict(max_iterations=3))])
+        back = calibrate(data, job[0], job[1], **job[2])
+    assert ["lining_creep"] not in made                      # it came from the background
+    assert same(back.values, here.values) and back.bic == here.bic and np.array_equal(back.jacobian, here.jacobian)
+    assert back.data is data
+    with pytest.raises(ChildProcessError):                   # the background process was waited for
+        os.waitpid(pids[0], os.WNOHANG)
+
+
+def test_a_background_fit_never_asked_for_is_stopped_and_a_dead_one_is_fitted_here(data, monkeypatch):
+    import os
+    from rollaway.identify import memo
+    monkeypatch.setenv("ROLLAWAY_WORKERS", "2")
+    pids, real = [], workers._fork
+    monkeypatch.setattr(workers, "_fork", lambda: (lambda pid: pids.append(pid) or pid)(real()))
+    with memo.fit_memo():
+        workers.ahead(data, [(["friction_temperature"], None, {})])
+    with pytest.raises(ChildProcessError):                   # stopped and waited for when the block ended
+        os.waitpid(pids[0], os.WNOHANG)
+    assert not memo._PENDING and not memo._ENDS
+    made = _counted_fits(monkeypatch)
+    monkeypatch.setattr(workers, "_call", lambda i: os._exit(9))   # the background process dies on its fit
+    job = (["cable_relaxation"], None, dict(max_iterations=4))
+    with memo.fit_memo():
+        workers.ahead(data, [job])
+        fit = calibrate(data, job[0], job[1], **job[2])
+    assert made == [["cable_relaxation"]] and fit.effects == ["cable_relaxation"]
+    monkeypatch.setenv("ROLLAWAY_WORKERS", "1")              # one worker, or no memo block: nothing is started
+    monkeypatch.setattr(workers, "_fork", lambda: pytest.fail("no background process with one worker"))
+    with memo.fit_memo():
+        workers.ahead(data, [job])
+    monkeypatch.setenv("ROLLAWAY_WORKERS", "2")
+    workers.ahead(data, [job])

@@ -32,7 +32,7 @@ from rollaway.identify.calibrate import FitResult, calibrate, evaluate
 from rollaway.identify.coarse import MAX_WINDOW_S, coarsen
 from rollaway.identify.drum import calibrate_drum, free_needed, predictive_covariance, recheck
 from rollaway.identify.diagnosis import Diagnosis
-from rollaway.identify.form import loose_shape, partial_form
+from rollaway.identify.form import loose_shape, partial_ahead, partial_form
 from rollaway.identify.fitting import single_blas_thread
 from rollaway.identify.lookahead import PAIR_BIC, pair_path, reformed_alone, runner_up_path
 from rollaway.identify.memo import memoised
@@ -91,8 +91,7 @@ def diagnose(data: Measurements, params=None, effects=None, *, noise_torque_Nm: 
     paper = evaluate(data, (), params)
     drum = calibrate_drum(data, params, free=free, fix=fix, start=first.values)
     params = drum.plan                                     # every later fit frees what the data identify
-    base = drum.fit
-    base_struct = structure(base, nq, nt)
+    base, base_struct = drum.fit, structure(drum.fit, nq, nt)
     ev = [f"Noise: {noise_words('torque', nq, 'N·m', '--noise-torque-Nm')}; "
           f"{noise_words('drum temperature', nt, '°C', '--noise-temp-C')}.",
           f"Each test's start temperature T_0 is fitted with the rest (t = 0 readings are measurements, "
@@ -101,9 +100,10 @@ def diagnose(data: Measurements, params=None, effects=None, *, noise_torque_Nm: 
           f"Calibrated drum ({drum_words(base, drum.free)}): "
           f"{base.rmse_torque_Nm:.3g} N·m and {base.rmse_temp_C:.3g} °C; "
           + describe_residual(base, "torque") + "; " + describe_residual(base, "temperature") + "."]
-    current, chosen, steps, fits = base, [], [], []
-    first_cands, base_cv, indist, struct = [], None, [], base_struct
+    current, chosen, steps, fits, first_cands, base_cv, indist, struct = base, [], [], [], [], None, [], base_struct
     for step in range(1, max_effects + 1):
+        if step == 2 and struct["structured"]:      # the partial form's fit, beside this step, if it adds nothing
+            partial_ahead(data, params, base, current, chosen)
         per_test_ok = per_test_signature(current, nq)
         cands, strong, passing, cur_cv = forward_step(data, params, names, current, chosen, step, per_test_ok,
                                                       held_brake=drum.held())

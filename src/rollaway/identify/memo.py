@@ -7,7 +7,9 @@ ordered; the first effect re-formed is fitted for the partial form and again for
 determines its result — the data set (the object, with its noise model), the effects (a shape-free effect by its
 base and knots), the parameter set and its freed brake parameters, the start values (every number, per-test arrays
 byte for byte) and the options — and a repeated call gets a copy of the first one's result: the same numbers,
-since each fit is deterministic.  Outside :func:`fit_memo` nothing is kept.
+since each fit is deterministic.  A fit started ahead in a background process
+(:func:`rollaway.identify.workers.ahead`) is expected under its key and waited for when asked.  Outside
+:func:`fit_memo` nothing is kept.
 """
 from __future__ import annotations
 
@@ -18,6 +20,8 @@ from contextlib import contextmanager
 import numpy as np
 
 _MEMO: dict | None = None        # key → (fit, objects the key refers to by identity, kept alive)
+_PENDING: dict = {}              # key → a call that waits for that fit from a background process (expect)
+_ENDS: list = []                 # calls made when the outermost block ends (background processes stopped)
 
 
 @contextmanager
@@ -31,7 +35,11 @@ def fit_memo():
         yield
     finally:
         if outer is None:
+            ends = list(_ENDS)
+            forked()
             _MEMO = None
+            for end in ends:
+                end()
 
 
 def memoised(func):
@@ -106,7 +114,31 @@ def lookup(k):
     if k is None or _MEMO is None:
         return None
     hit = _MEMO.get(k[0])
+    if hit is None and k[0] in _PENDING:         # being fitted in the background: wait for it (it is stored)
+        _PENDING.pop(k[0])()
+        hit = _MEMO.get(k[0])
     return None if hit is None else copy_fit(hit[0])
+
+
+def known(k) -> bool:
+    """Is the fit of *k* (from :func:`key`) kept, or expected from the background (nothing is waited for)?"""
+    return k is not None and _MEMO is not None and (k[0] in _MEMO or k[0] in _PENDING)
+
+
+def expect(k, wait, end=None) -> None:
+    """The fit of *k* (from :func:`key`) comes from a background process: :func:`lookup` calls *wait* (which stores
+    it, or not where the process failed) before it answers; *end* is called when the outermost block ends."""
+    if k is not None and _MEMO is not None:
+        _PENDING[k[0]] = wait
+        if end is not None and end not in _ENDS:
+            _ENDS.append(end)
+
+
+def forked() -> None:
+    """Forget the fits expected from the background: in a forked process (their pipes are the parent's to read), and
+    when the outermost block ends."""
+    _PENDING.clear()
+    _ENDS.clear()
 
 
 def store(k, fit) -> None:
@@ -141,4 +173,5 @@ def copy_fit(fit):
     return out
 
 
-__all__ = ["ABSENT", "copy_fit", "fit_memo", "key", "lookup", "memoised", "recall", "remember", "store"]
+__all__ = ["ABSENT", "copy_fit", "expect", "fit_memo", "forked", "key", "known", "lookup", "memoised", "recall",
+           "remember", "store"]

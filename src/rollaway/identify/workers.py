@@ -9,6 +9,8 @@ through a pipe this process drains as it goes.  This process works on the batch 
 a batch costs one fork per further core and nothing else (a process pool costs its start, its queues and one more
 process each time: 20–30 ms a batch here, a diagnosis runs 10–20 batches).
 The results are the same, fit for fit, as one after another: each fit is deterministic and independent.
+A fit a later step will likely ask for can be started at once in a background process (:func:`ahead`), beside
+whatever this process does next; it reaches the memo when asked for (:mod:`rollaway.identify.memo`).
 
 One after another instead: one core (``ROLLAWAY_WORKERS=1`` or the process's CPU affinity), no ``fork``
 (Windows), inside a daemonic process (a multiprocessing pool's worker cannot have children), outside the main
@@ -157,6 +159,8 @@ def _helper(r: int, w: int, take, count: int, earlier) -> None:
     process (it never returns into the caller's frames)."""
     code = 0
     try:
+        from rollaway.identify import memo
+        memo.forked()                                # the background fits' pipes are the caller's to read
         os.close(r)
         for _, other in earlier:                     # the pipes of the helpers forked before it are not its own
             os.close(other)
@@ -178,13 +182,88 @@ def _helper(r: int, w: int, take, count: int, earlier) -> None:
 def _drain(r: int, out: list) -> None:
     """Read a helper's fits from its pipe into *out* until it ends (a cut-off record is dropped)."""
     with os.fdopen(r, "rb") as pipe:
-        while len(head := pipe.read(8)) == 8:
-            size = int.from_bytes(head, "little")
-            blob = pipe.read(size)
-            if len(blob) < size:
-                break
-            i, fit = pickle.loads(blob)
+        while (record := _record(pipe)) is not None:
+            i, fit = record
             out[i] = fit
+
+
+def _record(pipe):
+    """The next (index, fit) a helper wrote to *pipe*, or None at its end (a cut-off record is dropped)."""
+    head = pipe.read(8)
+    if len(head) < 8:
+        return None
+    size = int.from_bytes(head, "little")
+    blob = pipe.read(size)
+    return pickle.loads(blob) if len(blob) == size else None
+
+
+def ahead(data, jobs: list[tuple]) -> None:
+    """Start the fit jobs ``(effects, params, kwargs)`` of :func:`~rollaway.identify.calibrate.calibrate` that a
+    later step is likely to ask for, now, in one forked background process beside whatever this process does next
+    (a serial fit that would otherwise leave a core idle).  Nothing is returned: a later ``calibrate`` of the same
+    job gets the background's fit from the memo (:func:`rollaway.identify.memo.lookup` waits for one still running),
+    the same numbers as fitted here (each fit is deterministic); one never asked for costs only the other core's
+    time, and the process is stopped when the diagnosis ends.  Nothing where fits run one after another (the module
+    docstring), outside a memo block, or for a job already kept or expected."""
+    from rollaway.identify import memo
+    from rollaway.identify.calibrate import calibrate
+    if (cores() < 2 or _fork is None or mp.current_process().daemon
+            or threading.current_thread() is not threading.main_thread()):
+        return
+    keys, calls = [], []
+    for effects, params, kwargs in jobs:
+        k = memo.key(data, effects, params, _full(kwargs))
+        if k is not None and not memo.known(k) and k[0] not in (kk[0] for kk in keys):
+            keys.append(k)
+            calls.append((calibrate, (effects, params), kwargs))
+    if not keys:
+        return
+    r, w = os.pipe()
+    try:
+        pid = _fork()
+    except OSError:              # no process to be had: the fits are made when asked
+        os.close(r)
+        os.close(w)
+        return
+    if pid == 0:                 # the background process: each fit in turn, sent back as it is done; never returns
+        global _CALLS
+        _CALLS = (data, calls)
+        order = iter(range(len(calls)))
+        _helper(r, w, lambda: next(order, len(calls)), len(calls), [])
+    os.close(w)
+    state = {"pipe": os.fdopen(r, "rb"), "fits": {}, "pid": pid}
+
+    def stop():
+        if state["pipe"] is not None:
+            _kill(pid)
+            state["pipe"].close()
+            state["pipe"] = None
+            _reap(pid)
+
+    def waiter(i: int, k):
+        def wait():
+            while i not in state["fits"] and state["pipe"] is not None:
+                record = _record(state["pipe"])
+                if record is None:           # it ended (or failed): what is missing is fitted when asked
+                    state["pipe"].close()
+                    state["pipe"] = None
+                    _reap(pid)
+                    break
+                state["fits"][record[0]] = record[1]
+            fit = state["fits"].pop(i, None)
+            if fit is not None:
+                fit.data = data
+                memo.store(k, fit)
+        return wait
+    for i, k in enumerate(keys):
+        memo.expect(k, waiter(i, k), stop)
+
+
+def _reap(pid: int) -> None:
+    try:
+        os.waitpid(pid, 0)
+    except ChildProcessError:
+        pass
 
 
 def _kill(pid: int) -> None:
@@ -207,4 +286,4 @@ def _full(kwargs: dict) -> dict:
                 **kwargs)
 
 
-__all__ = ["cores", "fit_all", "run_fits"]
+__all__ = ["ahead", "cores", "fit_all", "run_fits"]
