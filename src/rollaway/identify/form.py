@@ -70,12 +70,16 @@ def partial_ahead(data, params, base: FitResult, refined: FitResult, chosen: lis
     """Start :func:`partial_form`'s first fit of the one effect *chosen* in the background
     (:func:`rollaway.identify.workers.ahead`) while the next forward step runs, where it will be asked for if that
     step adds nothing: *refined*'s residual is structured (the caller's test) and it explains at least
-    :data:`PARTIAL_SHARE` of the baseline's excess error.  On a 100 Hz log of 12 s tests it is the longest fit left
-    that nothing runs beside."""
+    :data:`PARTIAL_SHARE` of the baseline's excess error.  Then the same effect re-formed with the re-formed fits'
+    budget (:func:`rollaway.identify.shape.reform_job`), which the search beside the partial first starts from
+    (:func:`rollaway.identify.partner.beside_partial`) and the partner test fits beside its first batch.  On a
+    100 Hz log of 12 s tests these are the longest fits left that nothing runs beside."""
+    from rollaway.identify.shape import reform_job
     from rollaway.identify.workers import ahead
     share = explained_share(base, refined)
     if len(chosen) == 1 and share is not None and share >= PARTIAL_SHARE:
-        ahead(data, [job for _, job in _flex_jobs(params, refined, chosen)[:1]])
+        ahead(data, [job for _, job in _flex_jobs(params, refined, chosen)[:1]]
+              + [job for job in [reform_job(params, chosen[0], refined)] if job is not None])
 
 
 __all__ = ["PARTIAL_SHARE", "explained_share", "loose_shape", "partial_ahead", "partial_form"]
