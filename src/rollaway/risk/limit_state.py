@@ -176,10 +176,9 @@ def model_draws(population, n: int, rng: np.random.Generator) -> dict | None:
     (:func:`rollaway.uncertainty.predictive.extrapolation`).
     """
     from rollaway.uncertainty.direction import mixture_parts, untested_direction
-    from rollaway.uncertainty.draws import (draw_values, own_record, torque_level_ratio, unseen_hold_change,
-                                            zero_torque_force)
+    from rollaway.uncertainty.draws import draw_values, hold_error, own_record, torque_level_ratio, zero_torque_force
     from rollaway.physics.drum import direction_sign
-    from rollaway.uncertainty.predictive import (edge_sd, extrapolation, hold_sd, measured_factor, model_error_draws,
+    from rollaway.uncertainty.predictive import (edge_sd, extrapolation, measured_factor, model_error_draws,
                                                  start_error_draws)
 
     model = population.model
@@ -217,12 +216,12 @@ def model_draws(population, n: int, rng: np.random.Generator) -> dict | None:
     f0 = zero_torque_force(model)
     factor, _ = extrapolation(pred, hand_force_N=force, direction=pop.directions[0], initial_temp_C=t0,
                               duration_s=hold, zero_torque_force_N=f0, level_ratio=level)
-    hold_err = min(hold_sd(unseen_hold_change(model, force, float(direction_sign(pop.directions[0])), t0, hold)), 1.0)
     eps, extra, starts = np.empty(n), np.zeros(n), []
     for k, (_, m) in enumerate(parts):     # each effect set errs by its own held-out record (and force extrapolation)
         own = own_record(pred, m)
         mine = owner == k
         edge, measured = edge_sd(own, force, f0, level), measured_factor(own, factor, force, f0, level)
+        hold_err = hold_error(m, force, float(direction_sign(pop.directions[0])), t0, hold)
         eps[mine] = model_error_draws(own, int(np.sum(mine)), factor, rng, edge, measured, hold_err)
         more = start_error_draws(own, int(np.sum(mine)), factor, rng, edge, measured, hold_err)
         starts.append(None if more is None else own["model_error_start"])

@@ -117,9 +117,10 @@ class Risk:
                        "apart from mu_drum (one direction pins the torque scale only)")
         unseen = (self.detail or {}).get("unseen_hold_change", 0.0)
         if unseen > 0.0:
-            from rollaway.uncertainty.predictive import hold_sd
-            beyond += (f"; after the bench's longest test the model's torque moves {unseen:.0%} more, unseen: that "
-                       f"counts as an error of ±{min(hold_sd(unseen), 1.0):.1%} (1σ)")
+            from rollaway.uncertainty.predictive import HOLD_SD_CAP, hold_sd
+            err = (self.detail or {}).get("hold_error_sd", min(hold_sd(unseen), HOLD_SD_CAP))
+            beyond += (f"; after the bench's longest test the model's torque moves by up to {unseen:.0%} of what is "
+                       f"left, unseen: that counts as an error of ±{err:.1%} (1σ)")
         start = (self.detail or {}).get("start_decided", 0.0)
         if start > 0.0:
             beyond += (f"; the start of the hold decides {start:.0%} of the draws, which take the held-out error of "
@@ -192,11 +193,15 @@ def torque_level_ratio(model: DrumModel, hand_force_N: float, tested_N, sign: fl
 
 def unseen_hold_change(model: DrumModel, hand_force_N: float, sign: float, initial_temp_C, duration_s: float,
                        points: int = 61) -> float:
-    """The largest relative change of the calibrated model's torque between the end of the bench's longest test
-    (the predictive record's ``tested_duration_s``) and *duration_s*, against its torque there (same hand force,
-    direction *sign* and start temperature): what a hold longer than the bench's asks the model to carry unseen
-    (:func:`rollaway.uncertainty.predictive.hold_sd`).  0 within the tested hold; inf where the torque there is none
-    or the model gives none it can count (the error is then capped where it is used)."""
+    """The largest change of the calibrated model's torque between the end of the bench's longest test (the
+    predictive record's ``tested_duration_s``) and a time up to *duration_s*, relative to the torque at that time
+    (same hand force, direction *sign* and start temperature): what a hold longer than the bench's asks the model to
+    carry unseen (:func:`rollaway.uncertainty.predictive.hold_sd`), as a share of the torque where a margin is
+    decided.  The law the model carries errs by a share of the change it carries (:data:`~rollaway.uncertainty.
+    predictive.UNSEEN_HOLD_SHARE`), and that error counts against the torque left: where the drum cools on from a
+    light pull, the clamp it loses can take most of the torque, and a few tenths of that loss are several times
+    what is left.  0 within the tested hold; inf where the torque at the end of the tested hold or later is none
+    (the error is then capped where it is used, :func:`hold_error`)."""
     from rollaway.hold.numeric import MarginFunction
     from rollaway.uncertainty.predictive import TOLERANCE
     tested = model.predictive.get("tested_duration_s")
@@ -206,9 +211,17 @@ def unseen_hold_change(model: DrumModel, hand_force_N: float, sign: float, initi
                         initial_temp_C)
     t = np.linspace(float(tested), float(duration_s), points)
     torque = np.asarray(fn(t, np.zeros(points, int)), float)
-    if not (np.all(np.isfinite(torque)) and torque[0] > 0.0):
+    if not (np.all(np.isfinite(torque)) and np.all(torque > 0.0)):
         return float("inf")
-    return float(np.max(np.abs(torque / torque[0] - 1.0)))
+    return float(np.max(np.abs(torque - torque[0]) / torque))
+
+
+def hold_error(model: DrumModel, hand_force_N: float, sign: float, initial_temp_C, duration_s: float) -> float:
+    """The relative torque error of *model* carried beyond the bench's hold to *duration_s*: its own unseen change
+    (:func:`unseen_hold_change`; each competing effect set carries its own law) through
+    :func:`rollaway.uncertainty.predictive.hold_sd`, at most :data:`~rollaway.uncertainty.predictive.HOLD_SD_CAP`."""
+    from rollaway.uncertainty.predictive import HOLD_SD_CAP, hold_sd
+    return min(hold_sd(unseen_hold_change(model, hand_force_N, sign, initial_temp_C, duration_s)), HOLD_SD_CAP)
 
 
 def own_record(pred: dict, part: DrumModel) -> dict:
@@ -241,7 +254,7 @@ def rollaway_risk(model: DrumModel, *, hand_force_N: float, grade_pct: float, di
     """
     from rollaway.hold import _effective, required_torque, tyre_adhesion_margin
     from rollaway.hold.numeric import Subset, first_slip_time
-    from rollaway.uncertainty.predictive import (edge_sd, extrapolation, hold_sd, measured_factor, model_error_draws,
+    from rollaway.uncertainty.predictive import (edge_sd, extrapolation, measured_factor, model_error_draws,
                                                  model_error_sd, start_error_draws)
 
     if not (isinstance(draws, (int, np.integer)) and 1 <= draws <= 1_000_000):
@@ -259,19 +272,20 @@ def rollaway_risk(model: DrumModel, *, hand_force_N: float, grade_pct: float, di
                                   duration_s=float(duration_s), zero_torque_force_N=f0, level_ratio=level)
     edge = edge_sd(pred, float(hand_force_N), f0, level)
     unseen = unseen_hold_change(model, float(hand_force_N), sign, t0, float(duration_s))
-    hold = min(hold_sd(unseen), 1.0)
     rng = np.random.default_rng(seed)
     parts = mixture_parts(model, direction)
     counts = np.floor(np.array([w for w, _ in parts]) * draws).astype(int)
     counts[0] += draws - counts.sum()
     owner = np.repeat(np.arange(len(parts)), counts)
     eps = np.empty(draws)
-    starts = []
+    starts, holds = [], []
     rng_start = np.random.default_rng(None if seed is None else (int(seed), 19))
     for k, (_, m) in enumerate(parts):       # each effect set errs by its own held-out record
         own = own_record(pred, m)
         own_edge = edge if own is pred else edge_sd(own, float(hand_force_N), f0, level)
         own_measured = measured_factor(own, factor, float(hand_force_N), f0, level)
+        hold = hold_error(m, float(hand_force_N), sign, t0, float(duration_s))
+        holds.append(hold)
         eps[owner == k] = model_error_draws(own, int(counts[k]), factor, rng, own_edge, own_measured, hold)
         extra = start_error_draws(own, int(counts[k]), factor, rng_start, own_edge, own_measured, hold)
         starts.append(None if extra is None else (extra, own["model_error_start"]))
@@ -314,8 +328,8 @@ def rollaway_risk(model: DrumModel, *, hand_force_N: float, grade_pct: float, di
               "model_error": max(v_all - v_mix, 0.0) / total} if v_all > 0 else {}
     detail = {"shares": shares, "flags": flags, "extrapolation_factor": factor,
               "model_error_rel_sd": model_error_sd(pred, factor, edge,
-                                                   measured_factor(pred, factor, float(hand_force_N), f0, level), hold),
-              "unseen_hold_change": unseen,
+                                                   measured_factor(pred, factor, float(hand_force_N), f0, level), holds[0]),
+              "unseen_hold_change": unseen, "hold_error_sd": holds[0],
               "models": [{"name": m.name, "weight": float(w), "draws": int(c)} for (w, m), c in zip(parts, counts)],
               "half_width": _half_width(least), "carried_over": bool(carried_over(model, sign)),
               "start_decided": float(np.mean(start_factor != 1.0))}
@@ -331,7 +345,7 @@ def least_force_band(model: DrumModel, grades_pct, direction: str, occupants: in
     rear tyres slide or no force holds."""
     from rollaway.hold import _effective, required_torque, tyre_adhesion_margin
     from rollaway.hold.numeric import MarginFunction, least_hand_force
-    from rollaway.uncertainty.predictive import (StartError, extrapolation, hold_sd, model_error_draws,
+    from rollaway.uncertainty.predictive import (StartError, extrapolation, model_error_draws,
                                                  start_error_draws)
 
     grades = np.atleast_1d(np.asarray(grades_pct, float))
@@ -341,8 +355,7 @@ def least_force_band(model: DrumModel, grades_pct, direction: str, occupants: in
     force = float(np.mean(model.predictive.get("tested_hand_force_N", [250.0, 250.0])))
     factor, _ = extrapolation(model.predictive, hand_force_N=force, direction=direction, initial_temp_C=t0,
                               duration_s=duration_s)
-    hold = min(hold_sd(unseen_hold_change(model, force, float(np.ravel(_effective(grades[:1], direction)[1])[0]), t0,
-                                          float(duration_s))), 1.0)
+    sign0 = float(np.ravel(_effective(grades[:1], direction)[1])[0])
     parts = mixture_parts(model, direction)
     counts = np.floor(np.array([w for w, _ in parts]) * draws).astype(int)
     counts[0] += draws - counts.sum()
@@ -353,6 +366,7 @@ def least_force_band(model: DrumModel, grades_pct, direction: str, occupants: in
         vals = draw_values(m, int(c), None if seed is None else seed + k, untested_direction(model, direction)) \
             if m.covariance is not None else {}
         own = own_record(model.predictive, m)
+        hold = hold_error(m, force, sign0, t0, float(duration_s))
         eps = model_error_draws(own, int(c), factor, rng, hold=hold)
         extra = start_error_draws(own, int(c), factor, rng_start, hold=hold)
         g, sign = _effective(grades, direction)
