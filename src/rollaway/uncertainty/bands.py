@@ -202,52 +202,7 @@ def edge_error(fit, side: str) -> dict | None:
     if levels.size < 3:
         return None
     edge, rest = (levels[0], levels[1:]) if side == "low" else (levels[-1], levels[:-1])
-    p = fit.model.params
-    slope = fit.values.get("u6_slope_m_per_N", p.u6_slope_m_per_N)
-    f0 = -fit.values.get("u6_offset_m", p.u6_offset_m) / slope if slope > 0 else None
-    distance = force_distance([float(rest[0]), float(rest[-1])], float(edge), f0)
     held = np.flatnonzero(np.abs(per_test - edge) < 0.05)
-    return _held_edge(fit, held, distance, side == "low")
-
-
-def start_temp_edge_error(fit, side: str = "high") -> dict | None:
-    """The relative torque error of predicting the test(s) started hottest (*side* ``"high"``) or coldest
-    (``"low"``) from the model calibrated on the others — an extrapolation in start temperature T_0 the data made —
-    net of the noise and of the re-calibration, as :func:`edge_error` for the hand force: ``{"rel_sd", "distance",
-    "tests", "excess_ms", "floor_rel_sd"}``, *distance* the edge's T_0 beyond the others' range relative to their
-    span (at least :data:`~rollaway.uncertainty.predictive.SPAN_FLOOR`).  A start hotter than the others reaches
-    temperatures the rest never saw: the thermal terms of eq. (16), a temperature law's shape there and the clamp
-    lost on cooling from there are extrapolated, and how well they carry is what this score measures
-    (:func:`rollaway.uncertainty.predictive.start_temp_edge_sd` carries it to a road question's T_0).  The edge's
-    tests are those within :data:`~rollaway.uncertainty.predictive.TOLERANCE` of the span of the extreme T_0.
-    None without a Jacobian, with fewer than three tests, or where the edge does not lie beyond the others."""
-    from rollaway.uncertainty.predictive import SPAN_FLOOR, TOLERANCE
-    d = fit.data
-    t0 = getattr(d, "test_initial_temp_C", None)
-    if fit.jacobian is None or not fit.names or t0 is None or d.n_tests < 3:
-        return None
-    t0 = np.asarray(t0, float)
-    if t0.size != d.n_tests or not np.all(np.isfinite(t0)):
-        return None
-    span_all = max(float(np.ptp(t0)), SPAN_FLOOR["initial_temp_C"])
-    edge = float(t0.max() if side == "high" else t0.min())
-    at_edge = np.abs(t0 - edge) <= TOLERANCE * span_all
-    rest = t0[~at_edge]
-    if rest.size < 2:
-        return None
-    span = max(float(np.ptp(rest)), SPAN_FLOOR["initial_temp_C"])
-    distance = (edge - float(rest.max())) / span if side == "high" else (float(rest.min()) - edge) / span
-    return _held_edge(fit, np.flatnonzero(at_edge), distance, False)
-
-
-def _held_edge(fit, held: np.ndarray, distance: float, unseen: bool) -> dict | None:
-    """The edge record of :func:`edge_error` and :func:`start_temp_edge_error`: the tests *held* predicted from the
-    others, scored where their margins are decided, net of the noise and the re-calibration; *unseen*: count the
-    share :data:`~rollaway.uncertainty.predictive.UNSEEN` of the noise's resolution too.  None where the edge lies
-    no *distance* beyond the others or no held test has samples."""
-    if distance <= 0.0 or held.size == 0:
-        return None
-    d = fit.data
     g, loo_g, solve = held_out(fit, held)
     n = len(d)
     loo = np.zeros(2 * n)
@@ -264,10 +219,16 @@ def _held_edge(fit, held: np.ndarray, distance: float, unseen: bool) -> dict | N
     if not s2:
         return None
     excess = float(np.mean(s2) - np.mean(noise) - np.mean(refit))
+    p = fit.model.params
+    slope = fit.values.get("u6_slope_m_per_N", p.u6_slope_m_per_N)
+    f0 = -fit.values.get("u6_offset_m", p.u6_offset_m) / slope if slope > 0 else None
+    distance = force_distance([float(rest[0]), float(rest[-1])], float(edge), f0)
+    if distance <= 0.0:
+        return None
     from rollaway.uncertainty.predictive import UNSEEN
     floor = math.sqrt(float(np.mean(noise)))
-    extra = UNSEEN * floor if unseen else 0.0
-    return {"rel_sd": math.sqrt(max(excess, 0.0) + extra ** 2), "distance": float(distance), "tests": len(s2),
+    unseen = UNSEEN * floor if side == "low" else 0.0
+    return {"rel_sd": math.sqrt(max(excess, 0.0) + unseen ** 2), "distance": distance, "tests": len(s2),
             "excess_ms": excess, "floor_rel_sd": floor}
 
 
