@@ -22,11 +22,11 @@ UNSEEN_HOLD_SHARE = 0.3      # [assumed] the relative torque error of a hold lon
                              # the change the model predicts over the untested part (:func:`hold_sd`): creep laws and
                              # a radiating drum's cooling carried from 2-min tests to an hour erred by 0.2–0.4 of it
                              # (tests/uncertainty/test_predictive.py)
-HOLD_SD_CAP = 3.0            # [assumed] the most the hold's error counts (1σ, a share of the torque left): a model
-                             # whose torque the hour's cooling nearly takes may leave the truth several times its
-                             # torque (light pulls carried from 12-s to 2-min tests kept 2.5–4 times the torque their
-                             # models did, tests/uncertainty/band_questions.py short campaigns 8 and 38); the error ε is
-                             # clipped at −0.9 and +9 (model_error_draws), so beyond this the band says "not sure"
+HOLD_SD_CAP = 3.0            # [assumed] the most the hold's error counts (1σ, a share of the torque left): a
+                             # model whose torque the hour's cooling nearly takes may leave the truth several times
+                             # its torque (light pulls carried from 12-s to 2-min tests kept 2.5–4 times the torque
+                             # their models did: tests/uncertainty/band_questions.py short campaigns 8 and 38); ε is
+                             # clipped at −0.9 and +9 (model_error_draws): beyond this the band says "not sure"
 
 
 def force_distance(tested_N, hand_force_N: float, zero_torque_force_N: float | None = None,
