@@ -327,8 +327,8 @@ def rollaway_risk(model: DrumModel, *, hand_force_N: float, grade_pct: float, di
     shares = {"parameters": min(v_par / total, 1.0), "choice_of_effects": max(v_mix - v_par, 0.0) / total,
               "model_error": max(v_all - v_mix, 0.0) / total} if v_all > 0 else {}
     detail = {"shares": shares, "flags": flags, "extrapolation_factor": factor,
-              "model_error_rel_sd": model_error_sd(pred, factor, edge, measured_factor(pred, factor, float(hand_force_N),
-                                                                                       f0, level), holds[0]),
+              "model_error_rel_sd": model_error_sd(
+                  pred, factor, edge, measured_factor(pred, factor, float(hand_force_N), f0, level), holds[0]),
               "unseen_hold_change": unseen, "hold_error_sd": holds[0],
               "models": [{"name": m.name, "weight": float(w), "draws": int(c)} for (w, m), c in zip(parts, counts)],
               "half_width": _half_width(least), "carried_over": bool(carried_over(model, sign)),
