@@ -68,11 +68,16 @@ def test_each_competing_effect_set_carries_its_own_unseen_change():
     fast = paper_tested_for(120.0).replace_params(heat_transfer_W_m2K=4000.0)
     mixed = DrumModel("paper", predictive={**RECORD, "tested_duration_s": 120.0}, alternatives=[(0.98, fast)])
     q = dict(QUESTION, hand_force_N=200.0)
-    width = {k: rollaway_risk(m, draws=2000, seed=3, **q).detail["half_width"]
-             for k, m in (("slow", slow), ("fast", fast), ("mixed", mixed))}
+    risks = {k: rollaway_risk(m, draws=2000, seed=3, **q) for k, m in (("slow", slow), ("fast", fast),
+                                                                         ("mixed", mixed))}
+    width = {k: r.detail["half_width"] for k, r in risks.items()}
     assert hold_error(slow, 200.0, -1.0, 200.0, 3600.0) > 0.05 > 10 * hold_error(fast, 200.0, -1.0, 200.0, 3600.0)
     assert width["mixed"] < 0.5 * width["slow"], width
     assert width["mixed"] == pytest.approx(width["fast"], rel=0.25), width
+    sets = risks["mixed"].detail["hold_error_sd_sets"]                 # said in the words, part by part
+    assert sets == pytest.approx([hold_error(m, 200.0, -1.0, 200.0, 3600.0) for m in (mixed, fast)])
+    assert "for the competing effect sets, each by its own law" in risks["mixed"].band_words()
+    assert "competing effect sets" not in risks["slow"].band_words()
 
 
 def test_the_hold_error_adds_in_quadrature():

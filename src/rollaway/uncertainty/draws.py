@@ -119,8 +119,12 @@ class Risk:
         if unseen > 0.0:
             from rollaway.uncertainty.predictive import HOLD_SD_CAP, hold_sd
             err = (self.detail or {}).get("hold_error_sd", min(hold_sd(unseen), HOLD_SD_CAP))
+            others = [h for h in (self.detail or {}).get("hold_error_sd_sets", [])[1:] if abs(h - err) > 1e-3]
+            span = (f"±{min(others):.1%}" + (f"–{max(others):.1%}" if max(others) - min(others) > 1e-3 else "")
+                    if others else "")
+            sets = f"; {span} for the competing effect sets, each by its own law" if others else ""
             beyond += (f"; after the bench's longest test the model's torque moves by up to {unseen:.0%} of what is "
-                       f"left, unseen: that counts as an error of ±{err:.1%} (1σ)")
+                       f"left, unseen: that counts as an error of ±{err:.1%} (1σ{sets})")
         start = (self.detail or {}).get("start_decided", 0.0)
         if start > 0.0:
             beyond += (f"; the start of the hold decides {start:.0%} of the draws, which take the held-out error of "
@@ -329,7 +333,7 @@ def rollaway_risk(model: DrumModel, *, hand_force_N: float, grade_pct: float, di
     detail = {"shares": shares, "flags": flags, "extrapolation_factor": factor,
               "model_error_rel_sd": model_error_sd(
                   pred, factor, edge, measured_factor(pred, factor, float(hand_force_N), f0, level), holds[0]),
-              "unseen_hold_change": unseen, "hold_error_sd": holds[0],
+              "unseen_hold_change": unseen, "hold_error_sd": holds[0], "hold_error_sd_sets": holds,
               "models": [{"name": m.name, "weight": float(w), "draws": int(c)} for (w, m), c in zip(parts, counts)],
               "half_width": _half_width(least), "carried_over": bool(carried_over(model, sign)),
               "start_decided": float(np.mean(start_factor != 1.0))}
