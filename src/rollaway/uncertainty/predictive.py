@@ -122,8 +122,8 @@ def measured_factor(pred: dict, factor: float, hand_force_N: float, zero_torque_
 
 def hold_sd(unseen_change: float) -> float:
     """The relative torque error of a hold longer than the bench's tests: :data:`UNSEEN_HOLD_SHARE` of
-    *unseen_change*, the largest relative change of the calibrated model's torque between the end of the tested
-    hold and the end of the question's (:func:`rollaway.uncertainty.draws.unseen_hold_change`).  The bench saw
+    *unseen_change*, the largest change of a model's torque after the end of the tested hold, relative to the
+    torque left at that time (:func:`rollaway.uncertainty.draws.unseen_hold_change`).  The bench saw
     nothing of that change — the drum cooling on, a creep or a relaxation going on — so no held-out score measured
     how well the model's laws carry it; the error scales with how much the model must carry, not with the bench's
     noise (a dense log of short tests would otherwise give an hour's answer to a few parts in 10 000)."""
