@@ -9,8 +9,8 @@ through a pipe this process drains as it goes.  This process works on the batch 
 a batch costs one fork per further core and nothing else (a process pool costs its start, its queues and one more
 process each time: 20–30 ms a batch here, a diagnosis runs 10–20 batches).
 The results are the same, fit for fit, as one after another: each fit is deterministic and independent.
-A fit a later step will likely ask for can be started at once in a background process (:func:`ahead`), beside
-whatever this process does next; it reaches the memo when asked for (:mod:`rollaway.identify.memo`).
+A fit a later step will likely ask for can be started at once in a background process of its own (:func:`ahead`),
+beside whatever this process does next; it reaches the memo when asked for (:mod:`rollaway.identify.memo`).
 
 One after another instead: one core (``ROLLAWAY_WORKERS=1`` or the process's CPU affinity), no ``fork``
 (Windows), inside a daemonic process (a multiprocessing pool's worker cannot have children), outside the main
@@ -199,8 +199,10 @@ def _record(pipe):
 
 def ahead(data, jobs: list[tuple]) -> None:
     """Start the fit jobs ``(effects, params, kwargs)`` of :func:`~rollaway.identify.calibrate.calibrate` that a
-    later step is likely to ask for, now, in one forked background process beside whatever this process does next
-    (a serial fit that would otherwise leave a core idle).  Nothing is returned: a later ``calibrate`` of the same
+    later step is likely to ask for, now, each in a forked background process of its own beside whatever this process
+    does next (a serial fit that would otherwise leave a core idle; a step that asks for two waits for the longer,
+    not for both one after the other: 0.59 s of waiting on the slowest short high-rate log, where a partial form's
+    fit and the re-formed first ran in one process).  Nothing is returned: a later ``calibrate`` of the same
     job gets the background's fit from the memo (:func:`rollaway.identify.memo.lookup` waits for one still running),
     the same numbers as fitted here (each fit is deterministic); one never asked for costs only the other core's
     time, and the process is stopped when the diagnosis ends.  Nothing where fits run one after another (the module
@@ -218,20 +220,27 @@ def ahead(data, jobs: list[tuple]) -> None:
             calls.append((calibrate, (effects, params), kwargs))
     if not keys:
         return
+    for k, call in zip(keys, calls):         # one process each: a step that asks for several waits for the longest
+        _background(data, k, call)
+
+
+def _background(data, k, call) -> None:
+    """Fork one background process fitting *call* (memo key *k*); the memo gets its fit when asked for."""
+    from rollaway.identify import memo
     r, w = os.pipe()
     try:
         pid = _fork()
-    except OSError:              # no process to be had: the fits are made when asked
+    except OSError:              # no process to be had: the fit is made when asked
         os.close(r)
         os.close(w)
         return
-    if pid == 0:                 # the background process: each fit in turn, sent back as it is done; never returns
+    if pid == 0:                 # the background process: the fit, sent back when done; never returns
         global _CALLS
-        _CALLS = (data, calls)
-        order = iter(range(len(calls)))
-        _helper(r, w, lambda: next(order, len(calls)), len(calls), [])
+        _CALLS = (data, [call])
+        order = iter(range(1))
+        _helper(r, w, lambda: next(order, 1), 1, [])
     os.close(w)
-    state = {"pipe": os.fdopen(r, "rb"), "fits": {}, "pid": pid}
+    state = {"pipe": os.fdopen(r, "rb"), "fit": None}
 
     def stop():
         if state["pipe"] is not None:
@@ -240,23 +249,17 @@ def ahead(data, jobs: list[tuple]) -> None:
             state["pipe"] = None
             _reap(pid)
 
-    def waiter(i: int, k):
-        def wait():
-            while i not in state["fits"] and state["pipe"] is not None:
-                record = _record(state["pipe"])
-                if record is None:           # it ended (or failed): what is missing is fitted when asked
-                    state["pipe"].close()
-                    state["pipe"] = None
-                    _reap(pid)
-                    break
-                state["fits"][record[0]] = record[1]
-            fit = state["fits"].pop(i, None)
-            if fit is not None:
+    def wait():
+        if state["pipe"] is not None:
+            record = _record(state["pipe"])          # None: it ended (or failed): the fit is made when asked
+            state["pipe"].close()
+            state["pipe"] = None
+            _reap(pid)
+            if record is not None and record[1] is not None:
+                fit = record[1]
                 fit.data = data
                 memo.store(k, fit)
-        return wait
-    for i, k in enumerate(keys):
-        memo.expect(k, waiter(i, k), stop)
+    memo.expect(k, wait, stop)
 
 
 def _reap(pid: int) -> None:
