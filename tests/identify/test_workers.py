@@ -173,3 +173,27 @@ def test_a_background_fit_never_asked_for_is_stopped_and_a_dead_one_is_fitted_he
         workers.ahead(data, [job])
     monkeypatch.setenv("ROLLAWAY_WORKERS", "2")
     workers.ahead(data, [job])
+
+
+def test_two_fits_started_ahead_run_side_by_side_each_in_its_own_process(data, monkeypatch):
+    """A step that asks for two background fits waits for the longer, not for both in turn: each job has a process
+    of its own, both are the fits made here, and both processes are waited for."""
+    import os
+    from rollaway.identify import memo
+    jobs = [(["lining_creep"], None, dict(max_iterations=6)), (["cable_relaxation"], None, dict(max_iterations=6))]
+    monkeypatch.setenv("ROLLAWAY_WORKERS", "1")
+    here = [calibrate(data, e, p, **kw) for e, p, kw in jobs]
+    monkeypatch.setenv("ROLLAWAY_WORKERS", "2")
+    made = _counted_fits(monkeypatch)
+    pids, real = [], workers._fork
+    monkeypatch.setattr(workers, "_fork", lambda: (lambda pid: pids.append(pid) or pid)(real()))
+    with memo.fit_memo():
+        workers.ahead(data, jobs)
+        assert len(pids) == 2
+        back = [calibrate(data, e, p, **kw) for e, p, kw in reversed(jobs)][::-1]   # asked for in either order
+    assert not made
+    for b, h in zip(back, here):
+        assert same(b.values, h.values) and b.bic == h.bic and b.data is data
+    for pid in pids:
+        with pytest.raises(ChildProcessError):
+            os.waitpid(pid, os.WNOHANG)
