@@ -37,7 +37,7 @@ def test_a_repeated_fit_is_kept_and_a_different_one_is_not(data, solves):
         b.fit_info["note"] = 1                       # a copy's notes stay its own
         assert "note" not in a.fit_info and "note" not in calibrate(data, ["lining_creep"]).fit_info
         calibrate(data, ["lining_creep"], start={"mu_drum": 0.3})          # another start
-        calibrate(data, ["lining_creep"], max_iterations=3)                # another budget
+        calibrate(data, ["lining_creep"], max_iterations=1)                # a budget that binds
         calibrate(data, ["cable_relaxation"])                              # another effect
         calibrate(data.subset(np.ones(len(data), bool)), ["lining_creep"])  # another data set
         assert solves["n"] == 5
@@ -116,3 +116,24 @@ def test_a_second_effect_sought_twice_beside_the_same_first_is_sought_once(data,
         assert len(searches) == 3
     partner.beside_reformed(data, None, "lining_creep", first, names)            # outside a diagnosis: no memo
     assert len(searches) == 4
+
+
+def test_a_smaller_budget_that_never_bound_is_served_by_the_larger_fit_number_for_number(data, solves):
+    """MINPACK stops on its budget only: a fit whose every pass ended below a smaller budget is that budget's fit
+    too.  Inside a memo block the smaller-budget call gets it without fitting (the same numbers as fitted on its
+    own, outside); a budget the larger fit's passes reached is fitted."""
+    big = calibrate(data, ["lining_creep"])
+    peak, k = big.fit_info["stages"][0]["peak_calls"], len(big.names) + 1
+    assert 0 < peak < fitting.MAX_ITERATIONS * k
+    loose, tight = peak // k + 1, max(peak // k, 1)          # loose·k > peak ≥ tight·k
+    assert loose < fitting.MAX_ITERATIONS and tight * k <= peak
+    alone = {m: calibrate(data, ["lining_creep"], max_iterations=m) for m in (loose, tight)}
+    solves["n"] = 0
+    with memo.fit_memo():
+        calibrate(data, ["lining_creep"])
+        got = calibrate(data, ["lining_creep"], max_iterations=loose)
+        assert solves["n"] == 1
+        assert all(np.array_equal(got.values[n], alone[loose].values[n]) for n in got.values)
+        assert got.bic == alone[loose].bic == big.bic
+        bound = calibrate(data, ["lining_creep"], max_iterations=tight)
+        assert solves["n"] == 2 and bound.bic == alone[tight].bic

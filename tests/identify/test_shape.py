@@ -241,3 +241,35 @@ def test_two_splines_along_different_covariates_clear_what_no_catalogue_form_doe
         assert f.bic < min(g.bic for g, _ in shapes.values())
     assert any({e.name for e in f.model.effects} == {"friction_temperature_shape", "cable_relaxation_shape"}
                for f in pairs), [f.model.effects for f in pairs]
+
+
+def test_a_pair_of_splines_that_cannot_beat_the_best_alone_is_abandoned_with_the_same_answer(monkeypatch):
+    """A 10 Hz log of two 240 s tests each way, a radiating drum with a sigmoid modulus drop on a drum with its
+    own eq. (24) line (slowest short high-rate log g18 of benchmarks/bench_diagnose.py): no pair of splines comes
+    below the best spline alone.  Each pair is abandoned once it cannot (give_up_bic): the same (empty) answer
+    as with every pair fitted to its end, for a fraction of the model evaluations."""
+    import rollaway.identify.shape as shape
+    from rollaway.identify import fitting, workers
+    from tests.identify.bench_generator import OTHER_DRUMS, generate
+    data = generate(["radiation", "modulus_sigmoid"], sampling="10Hz", seed=5518, duration_s=240.0, n_forces=2,
+                    drum=OTHER_DRUMS["eq24_own"], mu=0.3539, h=36.18)
+    d = diagnose(data)
+    assert d.verdict == "none" and d.remaining_structure
+    shapes = shape.candidate_shapes(d.data, d.candidates, d.drum.plan, d.noise_torque, d.noise_temp)
+    calls = {"n": 0}
+    raw = fitting.Problem.raw_stacked
+
+    def counted(self, sets):
+        calls["n"] += len(sets)
+        return raw(self, sets)
+    monkeypatch.setattr(fitting.Problem, "raw_stacked", counted)
+    monkeypatch.setenv("ROLLAWAY_WORKERS", "1")              # the evaluations counted in this process
+    with_bar = shape.pair_shapes(d.data, shapes, d.drum.plan, d.noise_torque, d.noise_temp)
+    n_bar, calls["n"] = calls["n"], 0
+    fit_all = workers.fit_all
+    monkeypatch.setattr(workers, "fit_all", lambda data, jobs: fit_all(        # every pair fitted to its end
+        data, [(e, p, {k: v for k, v in kw.items() if k != "give_up_bic"}) for e, p, kw in jobs]))
+    without = shape.pair_shapes(d.data, shapes, d.drum.plan, d.noise_torque, d.noise_temp)
+    assert len(shapes) >= 3
+    assert [f.effects for f in with_bar] == [f.effects for f in without] == []
+    assert 0 < n_bar < 0.3 * calls["n"], (n_bar, calls["n"])

@@ -289,7 +289,8 @@ def _result(model, data, sol, prob, names, families, statistics=True) -> FitResu
                      n_per_test=sum(data.n_tests for f in families if f != INITIAL_TEMP),
                      fit_info={"stages": [{"channel": "joint (temperature + torque)", "names": list(names),
                                            "correlation": None if corr is None else np.asarray(corr).tolist(),
-                                           "nfev": int(getattr(sol, "nfev", 0)), "success": True}]},
+                                           "nfev": int(getattr(sol, "nfev", 0)), "success": True,
+                                           "peak_calls": int(getattr(sol, "peak_calls", 0))}]},
                      jacobian=None if jac is None else jac / sol.scale[None, :])
 
 

@@ -66,6 +66,8 @@ class Solution:
     local_normal: np.ndarray | None   # (tests, m, m) per-test normal matrices of the families
     nfev: int
     gave_up: bool = False         # abandoned as futile (Problem.solve's give_up_loglik): not converged
+    peak_calls: int = 0           # the most residual calls MINPACK made in one pass: a smaller budget that is still
+                                  # above it never binds (the same fit, number for number)
 
 
 class Problem:
@@ -283,7 +285,7 @@ class Problem:
         def to_x(zz):
             return lo + (hi - lo) * (np.sin(zz) + 1.0) / 2.0
 
-        gave_up = False
+        gave_up, used = False, []
         outers = MAX_OUTER if passes is None else max(1, min(int(passes), MAX_OUTER))
         for outer in range(outers):
             fixed = dict(vals)
@@ -305,7 +307,7 @@ class Problem:
                 budget = max_iterations * (len(names) + 1)
                 later = (outers - outer - 1) * budget if self.families else 0
                 stop = None if give_up_loglik is None else futile(give_up_loglik, later)
-                z, gave_up = levenberg_marquardt(fun, columns, z, tol, budget, stop)
+                z, gave_up = levenberg_marquardt(fun, columns, z, tol, budget, stop, used)
                 vals.update(zip(names, to_x(z)))
             r_lin, step, _, _ = self.profile(vals)
             if not self.families or gave_up:
@@ -320,7 +322,7 @@ class Problem:
         x = np.array([vals[n] for n in names], float)
         scale = np.maximum(np.abs(x), 1e-3 * (hi - lo)) if names else np.zeros(0)
         jac = self.projected_jacobian(vals, r, lo, hi, scale) if (names and jacobian) else None
-        return Solution(vals, r_true, jac, scale, grads, normal, self.nfev, gave_up)
+        return Solution(vals, r_true, jac, scale, grads, normal, self.nfev, gave_up, max(used, default=0))
 
     def projected_jacobian(self, vals, r0, lo, hi, scale) -> np.ndarray:
         """∂(projected residual)/∂(x/scale) by forward differences, stepping inwards at a bound."""

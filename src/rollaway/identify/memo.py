@@ -7,7 +7,9 @@ ordered; the first effect re-formed is fitted for the partial form and again for
 determines its result — the data set (the object, with its noise model), the effects (a shape-free effect by its
 base and knots), the parameter set and its freed brake parameters, the start values (every number, per-test arrays
 byte for byte) and the options — and a repeated call gets a copy of the first one's result: the same numbers,
-since each fit is deterministic.  A fit started ahead in a background process
+since each fit is deterministic; a call that differs only by a smaller budget gets the larger one's fit where
+that fit's every pass ended below it (MINPACK stops on its budget alone: the same steps, the same numbers).  A fit
+started ahead in a background process
 (:func:`rollaway.identify.workers.ahead`) is expected under its key and waited for when asked.  Outside
 :func:`fit_memo` nothing is kept.
 """
@@ -110,19 +112,70 @@ def same_model(data, effects, params):
 
 
 def lookup(k):
-    """A copy of the fit kept under *k* (from :func:`key`), or None."""
+    """A copy of the fit kept under *k* (from :func:`key`), or None.  Where none is kept, that of the same call
+    with a larger budget that never bound (:func:`_unbound_twin`)."""
     if k is None or _MEMO is None:
         return None
     hit = _MEMO.get(k[0])
     if hit is None and k[0] in _PENDING:         # being fitted in the background: wait for it (it is stored)
         _PENDING.pop(k[0])()
         hit = _MEMO.get(k[0])
+    if hit is None:
+        twin = _unbound_twin(k[0])
+        if twin is not None:
+            _MEMO[k[0]] = hit = (twin, k[1])
     return None if hit is None else copy_fit(hit[0])
+
+
+def _budget(k0) -> tuple | None:
+    """(the memo key *k0* without its budget, its budget in iterations per pass), or None for a key of another kind
+    or a fit that may give up (:func:`rollaway.identify.solver.futile` reads the budget)."""
+    from rollaway.identify.fitting import MAX_ITERATIONS
+    if not (isinstance(k0, tuple) and len(k0) == 10 and isinstance(k0[9], tuple)):
+        return None
+    opts = dict(k0[9])
+    if opts.get("give_up_bic") is not None:
+        return None
+    rest = tuple((n, v) for n, v in k0[9] if n != "max_iterations")
+    return k0[:9] + (rest,), opts.get("max_iterations") or MAX_ITERATIONS
+
+
+def _unbound_twin(k0):
+    """The fit of the call *k0* made with a larger budget (kept, or expected from the background: waited for) whose
+    every pass ended below *k0*'s budget: MINPACK took the same steps and stopped where *k0*'s would have, so it is
+    *k0*'s fit number for number (a partial form's fit and the same effect re-formed with the re-formed fits'
+    budget, both started ahead: one process instead of two).  None where there is none."""
+    own = _budget(k0)
+    if own is None:
+        return None
+    for kk in list(_PENDING) + list(_MEMO):
+        other = _budget(kk)
+        if other is None or other[0] != own[0] or other[1] <= own[1]:
+            continue
+        if kk in _PENDING:
+            _PENDING.pop(kk)()
+        hit = _MEMO.get(kk)
+        if hit is None:
+            continue
+        fit = hit[0]
+        stage = (fit.fit_info.get("stages") or [{}])[0]
+        peak = stage.get("peak_calls")
+        if peak is not None and "gave_up" not in fit.fit_info and peak < own[1] * (len(fit.names) + 1):
+            return fit
+    return None
 
 
 def known(k) -> bool:
     """Is the fit of *k* (from :func:`key`) kept, or expected from the background (nothing is waited for)?"""
     return k is not None and _MEMO is not None and (k[0] in _MEMO or k[0] in _PENDING)
+
+
+def larger_budget(k, others) -> bool:
+    """Is one of the keys *others* (from :func:`key`) the call *k* with a larger budget (whose fit may be *k*'s:
+    :func:`lookup`)?"""
+    own = None if k is None else _budget(k[0])
+    return own is not None and any(o is not None and (b := _budget(o[0])) is not None and b[0] == own[0]
+                                   and b[1] > own[1] for o in others)
 
 
 def expect(k, wait, end=None) -> None:
@@ -173,5 +226,5 @@ def copy_fit(fit):
     return out
 
 
-__all__ = ["ABSENT", "copy_fit", "expect", "fit_memo", "forked", "key", "known", "lookup", "memoised", "recall",
-           "remember", "store"]
+__all__ = ["ABSENT", "copy_fit", "expect", "fit_memo", "forked", "key", "known", "larger_budget", "lookup", "memoised",
+           "recall", "remember", "store"]

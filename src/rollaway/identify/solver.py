@@ -57,7 +57,7 @@ def futile(give_up_loglik: float, later_calls: int = 0):
 
 
 def levenberg_marquardt(fun, columns, z0: np.ndarray, tol: float, max_nfev: int,
-                        stop=None) -> tuple[np.ndarray, bool]:
+                        stop=None, used: list | None = None) -> tuple[np.ndarray, bool]:
     """The minimiser of ‖fun(z)‖² from *z0* by MINPACK's Levenberg–Marquardt (``lmder``, called as
     :func:`scipy.optimize.leastsq` calls it), exactly as :func:`scipy.optimize.least_squares` runs it with ``method="lm"``,
     ``x_scale=1.0`` (MINPACK's ``diag`` all ones), ``max_nfev`` and *tol* as ``ftol``, ``xtol`` and ``gtol``: the same
@@ -68,6 +68,8 @@ def levenberg_marquardt(fun, columns, z0: np.ndarray, tol: float, max_nfev: int,
     parameters: :func:`scipy.optimize.least_squares` (and its error).
 
     *stop* (:func:`futile`), asked at each iterate (where MINPACK wants its Jacobian), abandons the fit there.
+    *used*: gets the residual calls made appended (the shape check's among them): a budget *max_nfev* above that
+    number never bound, and any such budget gives the same minimiser.
     Returns (the minimiser, or the iterate where *stop* abandoned it; whether it did)."""
     last: dict = {}
     history: list = []
@@ -108,6 +110,8 @@ def levenberg_marquardt(fun, columns, z0: np.ndarray, tol: float, max_nfev: int,
     z0 = np.asarray(z0, float).ravel()
     if np.size(counted(z0)) < z0.size:     # counted: as leastsq's own check of the function's shape
         from scipy import optimize
+        if used is not None:
+            used.append(max_nfev)          # not counted there: as if the budget bound
         return optimize.least_squares(fun, z0, method="lm", xtol=tol, ftol=tol, gtol=tol, x_scale=1.0,
                                       max_nfev=max_nfev).x, False
     try:                                    # scipy.optimize.leastsq's calls, without its covariance and messages
@@ -115,6 +119,9 @@ def levenberg_marquardt(fun, columns, z0: np.ndarray, tol: float, max_nfev: int,
         x, info = optimize_extension("_minpack")._lmder(counted, jac, z0, (), 0, 0, tol, tol, tol, max_nfev, 100.0, np.ones(z0.size))
     except _GiveUp:
         return last["gave_up"], True
+    finally:
+        if used is not None:
+            used.append(calls[0])
     if info == 0:
         raise TypeError("MINPACK lmder: improper input parameters")
     return x, False

@@ -206,16 +206,19 @@ def ahead(data, jobs: list[tuple]) -> None:
     job gets the background's fit from the memo (:func:`rollaway.identify.memo.lookup` waits for one still running),
     the same numbers as fitted here (each fit is deterministic); one never asked for costs only the other core's
     time, and the process is stopped when the diagnosis ends.  Nothing where fits run one after another (the module
-    docstring), outside a memo block, or for a job already kept or expected."""
+    docstring), outside a memo block, or for a job already kept or expected; nor for a job that another of *jobs*
+    asks with a larger budget: where that one's passes end below this one's budget its fit is this one's too
+    (:func:`rollaway.identify.memo.lookup`; else this one is fitted when asked)."""
     from rollaway.identify import memo
     from rollaway.identify.calibrate import calibrate
     if (cores() < 2 or _fork is None or mp.current_process().daemon
             or threading.current_thread() is not threading.main_thread()):
         return
     keys, calls = [], []
-    for effects, params, kwargs in jobs:
-        k = memo.key(data, effects, params, _full(kwargs))
-        if k is not None and not memo.known(k) and k[0] not in (kk[0] for kk in keys):
+    every = [memo.key(data, effects, params, _full(kwargs)) for effects, params, kwargs in jobs]
+    for k, (effects, params, kwargs) in zip(every, jobs):
+        if (k is not None and not memo.known(k) and k[0] not in (kk[0] for kk in keys)
+                and not memo.larger_budget(k, every)):     # its larger-budget twin's fit may be its own (memo)
             keys.append(k)
             calls.append((calibrate, (effects, params), kwargs))
     if not keys:
