@@ -197,3 +197,27 @@ def test_two_fits_started_ahead_run_side_by_side_each_in_its_own_process(data, m
     for pid in pids:
         with pytest.raises(ChildProcessError):
             os.waitpid(pid, os.WNOHANG)
+
+
+def test_of_two_jobs_that_differ_only_in_budget_one_process_fits_the_larger_and_serves_both(data, monkeypatch):
+    """A job asked ahead beside the same job with a larger budget has no process of its own: where the larger's
+    passes end below its budget, the larger's fit is its fit, the same numbers as fitted here with its own budget;
+    a budget the larger's passes reached is fitted when asked."""
+    from rollaway.identify import memo
+    monkeypatch.setenv("ROLLAWAY_WORKERS", "1")
+    big = calibrate(data, ["lining_creep"])
+    peak, k = big.fit_info["stages"][0]["peak_calls"], len(big.names) + 1
+    loose, tight = peak // k + 1, max(peak // k, 1)
+    here = {m: calibrate(data, ["lining_creep"], max_iterations=m) for m in (loose, tight)}
+    monkeypatch.setenv("ROLLAWAY_WORKERS", "2")
+    pids, real = [], workers._fork
+    monkeypatch.setattr(workers, "_fork", lambda: (lambda pid: pids.append(pid) or pid)(real()))
+    for m in (loose, tight):
+        made = _counted_fits(monkeypatch)
+        with memo.fit_memo():
+            workers.ahead(data, [(["lining_creep"], None, {}), (["lining_creep"], None, dict(max_iterations=m))])
+            assert len(pids) == 1
+            got = calibrate(data, ["lining_creep"], max_iterations=m)
+        pids.clear()
+        assert same(got.values, here[m].values) and got.bic == here[m].bic
+        assert len(made) == (m == tight), (m, made)
