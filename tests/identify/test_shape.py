@@ -250,12 +250,15 @@ def test_a_pair_of_splines_that_cannot_beat_the_best_alone_is_abandoned_with_the
     as with every pair fitted to its end, for a fraction of the model evaluations."""
     import rollaway.identify.shape as shape
     from rollaway.identify import fitting, workers
+    from rollaway.identify.coarse import coarsen
     from tests.identify.bench_generator import OTHER_DRUMS, generate
     data = generate(["radiation", "modulus_sigmoid"], sampling="10Hz", seed=5518, duration_s=240.0, n_forces=2,
                     drum=OTHER_DRUMS["eq24_own"], mu=0.3539, h=36.18)
     d = diagnose(data)
     assert d.verdict == "none" and d.remaining_structure
-    shapes = shape.candidate_shapes(d.data, d.candidates, d.drum.plan, d.noise_torque, d.noise_temp)
+    rows = coarsen(d.data)                       # the rows the selection ran on (a dense log's window means)
+    assert len(rows) < len(d.data) / 10
+    shapes = shape.candidate_shapes(rows, d.candidates, d.drum.plan, d.noise_torque, d.noise_temp)
     calls = {"n": 0}
     raw = fitting.Problem.raw_stacked
 
@@ -264,12 +267,12 @@ def test_a_pair_of_splines_that_cannot_beat_the_best_alone_is_abandoned_with_the
         return raw(self, sets)
     monkeypatch.setattr(fitting.Problem, "raw_stacked", counted)
     monkeypatch.setenv("ROLLAWAY_WORKERS", "1")              # the evaluations counted in this process
-    with_bar = shape.pair_shapes(d.data, shapes, d.drum.plan, d.noise_torque, d.noise_temp)
+    with_bar = shape.pair_shapes(rows, shapes, d.drum.plan, d.noise_torque, d.noise_temp)
     n_bar, calls["n"] = calls["n"], 0
     fit_all = workers.fit_all
     monkeypatch.setattr(workers, "fit_all", lambda data, jobs: fit_all(        # every pair fitted to its end
         data, [(e, p, {k: v for k, v in kw.items() if k != "give_up_bic"}) for e, p, kw in jobs]))
-    without = shape.pair_shapes(d.data, shapes, d.drum.plan, d.noise_torque, d.noise_temp)
+    without = shape.pair_shapes(rows, shapes, d.drum.plan, d.noise_torque, d.noise_temp)
     assert len(shapes) >= 3
     assert [f.effects for f in with_bar] == [f.effects for f in without] == []
     assert 0 < n_bar < 0.3 * calls["n"], (n_bar, calls["n"])
