@@ -35,6 +35,7 @@ from rollaway.identify.workers import fit_all
 from rollaway.bench.measurements import Measurements
 from rollaway.identify.model import DrumPlan
 from rollaway.identify.drum_status import ParameterStatus
+from rollaway.identify.enough import require
 from rollaway.model.drum_model import Covariance
 from rollaway.model.parameters import BrakeParameters, load_parameters
 
@@ -177,6 +178,7 @@ def calibrate_drum(data: Measurements, params=None, *, free=None, fix=(), start:
     selection = ("chosen by you (--free)" if free else
                  f"free parameters chosen by singular values ≥ {min_singular_value:g} of the Jacobian in units of "
                  f"each parameter's assumed spread")
+    require(data, len(candidates) + data.n_tests, "calibrate the drum")
     vals = dict(start or {})
     sv: list[float] = []
     while True:

@@ -4,6 +4,7 @@ from __future__ import annotations
 from dataclasses import dataclass
 
 from rollaway.identify.calibrate import FitResult, calibrate, evaluate
+from rollaway.identify.enough import require
 from rollaway.identify.export import CalibratedModelMixin
 from rollaway.effects import get_effect
 from rollaway.bench.measurements import Measurements
@@ -86,8 +87,10 @@ def fit(data: Measurements, effects, params=None, start: dict | None = None) -> 
     chosen = [get_effect(e) for e in effects]
     rungs = [("paper defaults", evaluate(data, (), params))]
     prev = calibrate(data, (), params)
+    require(data, prev.k + data.n_tests, "calibrate the paper model")
     rungs.append(("calibrated paper model (μ_d, h)", prev))
     for i, eff in enumerate(chosen):
         prev = calibrate(data, chosen[:i + 1], params, start={**prev.values, **(start or {})})
+        require(data, prev.k + data.n_tests, "judge " + " + ".join(e.name for e in chosen[:i + 1]))
         rungs.append((("calibrated + " if i == 0 else "  + ") + eff.name, prev))
     return Ladder(data, rungs)
