@@ -44,6 +44,8 @@ BIN_S = 1.0                 # statistics are kept per second of log, windows are
 WINDOW_C = 750.0
 MIN_ROWS = 60               # windows per test at least (a short test keeps its time resolution)
 MIN_PER_WINDOW = 8          # reduce only when a window holds at least this many samples (median test)
+MIN_TEST_WINDOWS = 10       # ... and the median test spans at least this many automatic windows: a 2-s test at
+                            # 100 Hz in 1-s windows keeps 3 rows, fewer than a drum calibration frees parameters
 KEEP_RAW_ROWS = 200_000     # raw rows kept in memory for a log that turns out not to need reducing
 # sufficient statistics per bin: n, Σt, ΣT, ΣM, Σambient, n_e, Σe_T², Σe_M²
 N, ST, STEMP, SQ, SAMB, NE, E2T, E2Q = range(8)
@@ -253,7 +255,7 @@ class Reducer:
         rate = float(np.median((counts - 1) / np.maximum(durations, 1e-300)))      # samples per second
         if window_s is None:
             w = auto_window(rate, float(durations.max()))
-            reduce = rate * w >= MIN_PER_WINDOW
+            reduce = rate * w >= MIN_PER_WINDOW and float(np.median(durations)) >= MIN_TEST_WINDOWS * w
         else:
             whole = math.isfinite(window_s) and abs(window_s / BIN_S - round(window_s / BIN_S)) <= 1e-9
             if not math.isfinite(window_s) or window_s < 0 or (window_s > 0 and not whole):
