@@ -7,6 +7,8 @@ model calibrated on the other tests) guards against effects that only fit noise.
 """
 from __future__ import annotations
 
+import math
+
 from dataclasses import dataclass
 
 import numpy as np
@@ -45,6 +47,23 @@ class Candidate:
                 "delta_bic": self.delta_bic, "delta_aic": self.delta_aic, "bic": self.fit.bic,
                 "cv_score": self.cv_score, "cv_better_tests": self.cv_better_tests, "step": self.step,
                 "parameters": self.fit.effect_parameters(self.effect), "warnings": self.fit.warnings}
+
+
+def traded_channels(fit: FitResult, base: FitResult) -> bool:
+    """True when *fit* frees every parameter *base* frees, and more, yet ends with less of the information criteria's
+    likelihood than *base*: at its effect's neutral value it is *base*, so its fit did not look for that likelihood.
+    A fit minimises the sum of squares weighted by the measured noise of both channels; BIC profiles each channel's
+    own scale.  Where the torque misses by tens of σ, the fit can trade the temperature channel for the torque (each
+    test's T₀ moved by several σ to set its torque level) and BIC then charges the temperature channel: its ΔBIC
+    above the drum alone is no evidence against the effect (a sigmoid modulus drop on 12-s tests at 100 Hz: the
+    modulus law at +166)."""
+    if not set(base.names) <= set(fit.names) or fit.k <= base.k:
+        return False
+    n = math.log(fit.n_temp + fit.n_torque)
+    return (fit.bic - fit.k * n) - (base.bic - base.k * n) > TRADED_TOLERANCE
+
+
+TRADED_TOLERANCE = 1.0       # log-likelihood term (−2 ln L) above the nested model's: beyond a converged fit's digits
 
 
 # -- structure ------------------------------------------------------------------------------
