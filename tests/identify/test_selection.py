@@ -140,7 +140,7 @@ def test_the_exchange_ranks_swaps_of_the_last_effect_by_the_forward_steps_own_fi
     assert ("friction_temperature", "cable_relaxation") in fitted      # fitted with another plan: fitted anew
 
 
-def test_a_candidate_above_the_drum_it_contains_is_marked_as_a_fit_that_traded_channels():
+def test_a_candidate_above_the_drum_it_contains_is_marked_as_a_fit_that_traded_channels(tmp_path):
     """A sigmoid modulus drop on 12-s tests at 100 Hz (held-out names short campaign 57): the drum alone misses the
     torque by ~80 N·m (tens of σ); the modulus law's fit moves each test's T₀ to set the torque levels and ends with
     less BIC likelihood than the drum it contains.  It is marked in the JSON and the table, and only such fits are:
@@ -155,6 +155,8 @@ def test_a_candidate_above_the_drum_it_contains_is_marked_as_a_fit_that_traded_c
     rows = {c["effect"]: c for c in d.as_dict()["candidates"]}
     assert rows["modulus_temperature"]["traded_channels"] and rows["modulus_temperature"]["delta_bic"] > 50
     assert "modulus_temperature *" in d.summary() and "no evidence against the effect" in d.summary()
+    d.report(tmp_path / "report.html")
+    assert "its fit traded temperature for torque" in (tmp_path / "report.html").read_text(encoding="utf-8")
     base = d.baseline
     n = math.log(base.n_temp + base.n_torque)
     for c in d.candidates:
