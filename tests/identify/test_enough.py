@@ -8,8 +8,8 @@ from tests.identify.bench_generator import generate
 
 
 def _one_short_test(tmp_path, seconds=0.48):
-    """One downhill test at 100 Hz lasting *seconds*, written as a canonical CSV (1-s windows reduce it to one or
-    two rows)."""
+    """One downhill test at 100 Hz lasting *seconds*, written as a canonical CSV (``--window-s 1`` reduces it to two
+    rows; the automatic reduction keeps its samples)."""
     data = generate(["friction_linear"], sampling="100Hz", seed=5, n_forces=1, directions=("downhill",),
                     duration_s=seconds, forces=[300.0])
     path = tmp_path / "short.csv"
@@ -26,7 +26,7 @@ def test_require_passes_with_the_spare_samples_and_refuses_one_fewer():
 
 def test_diagnose_of_one_half_second_test_is_a_one_line_error_naming_the_file_and_the_fix(tmp_path, run_cli):
     path = _one_short_test(tmp_path)
-    code, out, err = run_cli("diagnose", path)
+    code, out, err = run_cli("diagnose", path, "--window-s", "1")
     assert code == 2 and "Traceback" not in err and out == ""
     line = [ln for ln in err.splitlines() if not ln.startswith("note:")]
     assert len(line) == 1 and "short.csv" in line[0] and "too few to calibrate the drum" in line[0]
@@ -34,8 +34,9 @@ def test_diagnose_of_one_half_second_test_is_a_one_line_error_naming_the_file_an
 
 
 def test_every_sample_of_the_same_test_is_enough_to_diagnose(tmp_path, run_cli):
-    code, out, _ = run_cli("diagnose", _one_short_test(tmp_path), "--window-s", "0")
-    assert code == 0 and out.startswith("verdict:")
+    for window in (("--window-s", "0"), ()):                 # every sample; the automatic reduction keeps them
+        code, out, _ = run_cli("diagnose", _one_short_test(tmp_path), *window)
+        assert code == 0 and out.startswith("verdict:")
 
 
 def test_a_fit_ladder_never_judges_an_effect_on_samples_it_interpolates(tmp_path):
@@ -43,7 +44,7 @@ def test_a_fit_ladder_never_judges_an_effect_on_samples_it_interpolates(tmp_path
     call it very strong evidence."""
     from rollaway.bench import load_measurements
     from rollaway.identify.ladder import fit
-    data = load_measurements(_one_short_test(tmp_path), None)          # reduced as the CLI reduces it
+    data = load_measurements(_one_short_test(tmp_path), 1.0)          # 1-s windows
     assert len(data) < 4
     with pytest.raises(UserError, match="too few to calibrate the paper model"):
         fit(data, ["friction_temperature"])
