@@ -14,7 +14,7 @@ from rollaway.identify.calibrate import FitResult
 from rollaway.identify.diagnose_words import score_text
 from rollaway.identify.drum import DrumCalibration
 from rollaway.identify.export import CalibratedModelMixin
-from rollaway.identify.selection import Candidate, traded_channels
+from rollaway.identify.selection import Candidate, nested_shortfall
 from rollaway.jsonsafe import to_jsonable
 
 
@@ -63,7 +63,7 @@ class Diagnosis(CalibratedModelMixin):
                           "torque": self.noise_torque.as_dict(), "temperature": self.noise_temp.as_dict()},
                 "paper": {"rmse_torque_Nm": self.paper.rmse_torque_Nm, "rmse_temp_C": self.paper.rmse_temp_C},
                 "baseline": {**rm(self.baseline), "cv_score": self.baseline_cv},
-                "candidates": [{**c.as_dict(), "traded_channels": traded_channels(c.fit, self.baseline)}
+                "candidates": [{**c.as_dict(), "nested_shortfall": nested_shortfall(c.fit, self.baseline)}
                                for c in self.candidates],
                 "verdict": self.verdict, "verdict_line": verdict_line(self.verdict, self.alternatives, self.detection,
                                                                      self.remaining_structure, self.named),
@@ -109,17 +109,20 @@ class Diagnosis(CalibratedModelMixin):
                                                 any(e["form"] != "exact" for e in self.effects) else "")]
         lines += [f"  {w}" for w in self.evidence]
         lines.append("")
-        lines.append(f"{'candidate (step 1)':<28}{'ΔBIC':>9}{'torque RMSE':>13}{'temp RMSE':>11}{'CV score':>10}")
+        lines.append(f"{'candidate (step 1)':<28}{'ΔBIC':>9}{'torque RMSE':>13}{'temp RMSE':>11}{'CV score':>12}")
         lines.append(f"{'(baseline)':<28}{0.0:>9.1f}{self.baseline.rmse_torque_Nm:>13.3g}"
-                     f"{self.baseline.rmse_temp_C:>11.3g}{score_text(self.baseline_cv):>10}")
-        traded = [traded_channels(c.fit, self.baseline) for c in self.candidates]
-        for c, t in zip(self.candidates, traded):
-            lines.append(f"{c.effect + (' *' if t else ''):<28}{c.delta_bic:>9.1f}{c.fit.rmse_torque_Nm:>13.3g}"
-                         f"{c.fit.rmse_temp_C:>11.3g}{score_text(c.cv_score):>10}")
-        if any(traded):
-            lines.append("* above the drum alone, which it contains: its fit (the noise-weighted sum of squares) gave "
-                         "up temperature fit for torque fit, and BIC, which weighs each channel by its own scale, "
-                         "charges that; no evidence against the effect (docs/limits.md)")
+                     f"{self.baseline.rmse_temp_C:>11.3g}{score_text(self.baseline_cv):>12}")
+        mark = {"traded": " *", "short": " †"}
+        marks = [mark.get(nested_shortfall(c.fit, self.baseline), "") for c in self.candidates]
+        for c, m in zip(self.candidates, marks):
+            lines.append(f"{c.effect + m:<28}{c.delta_bic:>9.1f}{c.fit.rmse_torque_Nm:>13.3g}"
+                         f"{c.fit.rmse_temp_C:>11.3g}{score_text(c.cv_score):>12}")
+        for m, words in ((" *", "its fit (the noise-weighted sum of squares) gave up temperature fit for torque fit, "
+                                "and BIC, which weighs each channel by its own scale, charges that"),
+                         (" †", "its fit stopped before it came back to the drum alone")):
+            if m in marks:
+                lines.append(f"{m.strip()} above the drum alone, which it contains: {words}; no evidence against the "
+                             f"effect (docs/limits.md)")
         if self.drum is not None:
             lines += ["", self.drum.report()]
         lines.append("")

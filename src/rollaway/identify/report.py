@@ -260,7 +260,7 @@ def comparison_report(cmp, path) -> None:
 
 
 def _candidate_rows(diag) -> list[list]:
-    from rollaway.identify.selection import traded_channels
+    from rollaway.identify.selection import SHORTFALL_WORDS as SHORT, nested_shortfall
     base_cv = getattr(diag, "baseline_cv", None)
     rows = [["paper model, calibrated (reference)", 0.0, diag.baseline.rmse_torque_Nm, diag.baseline.rmse_temp_C,
              base_cv, "–"]]
@@ -268,8 +268,7 @@ def _candidate_rows(diag) -> list[list]:
         cv = getattr(c, "cv_score", None)
         better = getattr(c, "cv_better_tests", None)
         rows.append([c.effect, c.delta_bic, c.fit.rmse_torque_Nm, c.fit.rmse_temp_C, cv if cv is not None else
-                     "its fit traded temperature for torque: above the drum it contains, no evidence against it"
-                     if traded_channels(c.fit, diag.baseline) else "not cross-validated (ΔBIC not below −10)",
+                     SHORT if nested_shortfall(c.fit, diag.baseline) else "not cross-validated (ΔBIC not below −10)",
                      f"{better} of {diag.data.n_tests}" if better is not None else "–"])
     return rows
 

@@ -49,21 +49,30 @@ class Candidate:
                 "parameters": self.fit.effect_parameters(self.effect), "warnings": self.fit.warnings}
 
 
-def traded_channels(fit: FitResult, base: FitResult) -> bool:
-    """True when *fit* frees every parameter *base* frees, and more, yet ends with less of the information criteria's
-    likelihood than *base*: at its effect's neutral value it is *base*, so its fit did not look for that likelihood.
-    A fit minimises the sum of squares weighted by the measured noise of both channels; BIC profiles each channel's
-    own scale.  Where the torque misses by tens of σ, the fit can trade the temperature channel for the torque (each
-    test's T₀ moved by several σ to set its torque level) and BIC then charges the temperature channel: its ΔBIC
-    above the drum alone is no evidence against the effect (a sigmoid modulus drop on 12-s tests at 100 Hz: the
-    modulus law at +166)."""
+def nested_shortfall(fit: FitResult, base: FitResult) -> str | None:
+    """Why *fit*, which frees every parameter *base* frees and more, ends with less of the information criteria's
+    likelihood than *base* (at its effect's neutral value it *is* *base*), or None where it does not:
+
+    * ``"traded"``: its noise-weighted sum of squares is below *base*'s, yet BIC's likelihood is not.  A fit
+      minimises the sum of squares weighted by the measured noise of both channels; BIC profiles each channel's own
+      scale.  Where the torque misses by tens of σ, the fit gives up temperature fit for torque fit (each test's T₀
+      moved by several σ to set its torque level) and BIC charges the temperature channel for it (a sigmoid modulus
+      drop on 12-s tests at 100 Hz: the modulus law at +166 above the drum alone);
+    * ``"short"``: its sum of squares is above *base*'s too: the fit stopped (its budget, another valley) before it
+      came back to the drum it contains.
+
+    Either way its ΔBIC above the drum alone is no evidence against the effect."""
     if not set(base.names) <= set(fit.names) or fit.k <= base.k:
-        return False
+        return None
     n = math.log(fit.n_temp + fit.n_torque)
-    return (fit.bic - fit.k * n) - (base.bic - base.k * n) > TRADED_TOLERANCE
+    if (fit.bic - fit.k * n) - (base.bic - base.k * n) <= SHORTFALL_TOLERANCE:
+        return None
+    return "short" if weighted_chi2(fit) > weighted_chi2(base) + SHORTFALL_TOLERANCE else "traded"
 
 
-TRADED_TOLERANCE = 1.0       # log-likelihood term (−2 ln L) above the nested model's: beyond a converged fit's digits
+SHORTFALL_WORDS = "above the drum it contains (its fit traded temperature for torque, or stopped short): no evidence"
+SHORTFALL_TOLERANCE = 1.0    # −2 ln L (and the weighted sum of squares) above the nested model's: beyond a converged
+                             # fit's digits
 
 
 # -- structure ------------------------------------------------------------------------------
