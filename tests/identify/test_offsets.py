@@ -6,10 +6,11 @@ from __future__ import annotations
 import os
 from types import SimpleNamespace
 
+import numpy as np
 import pytest
 
 from rollaway.identify.diagnose import diagnose
-from rollaway.identify.offsets import offsets_rival
+from rollaway.identify.offsets import offsets_rival, once_per_force
 from tests.identify.bench_generator import OTHER_DRUMS, generate
 
 
@@ -82,3 +83,28 @@ def test_no_partner_and_at_most_one_false_name_on_short_high_rate_logs():
     rows = run(24, short=True)
     false = [r for r in rows if r["verdict"] != "none" and not r["right_or_alternative"]]
     assert summary(rows)["partner"] == 0 and len(false) <= 1, false
+
+
+@pytest.mark.parametrize("seed, n_forces, direction, mu, h", [(5023, 3, "downhill", 0.397, 33.1),
+                                                              (5035, 4, "uphill", 0.341, 28.5)])
+def test_offsets_on_one_test_per_force_are_not_hidden_behind_a_law_of_the_hand_force(seed, n_forces, direction, mu, h):
+    """Zero offsets (25 N·m a test) on 10-min tests at 1 Hz facing one way, each force tested once: a stiffness law of
+    the hand force writes the same test levels with fewer values and was named alone.  Now the offsets are the verdict
+    or named beside it, with the test that separates them (a force tested twice)."""
+    data = generate(["zero_offset"], sampling="1Hz", seed=seed, duration_s=600.0, n_forces=n_forces,
+                    directions=(direction,), drum=OTHER_DRUMS["all_together"], mu=mu, h=h)
+    assert once_per_force(data)
+    d = diagnose(data)
+    alts = [a for a in d.alternatives if a["effects"] == ["torque_zero_offset"]]
+    assert d.verdict == "torque_zero_offset" or alts
+    if alts and d.verdict == "nonlinear_lining_stiffness":
+        assert "second test at a tested hand force" in alts[0]["tell_apart"]["words"]
+        assert "cannot tell them apart" in d.summary().splitlines()[0]
+
+
+def test_once_per_force_is_false_where_a_force_is_tested_twice_facing_one_way():
+    one = generate([], sampling="15min", seed=3, n_forces=3, directions=("downhill",))
+    assert once_per_force(one)
+    twice = one.subset(np.ones(len(one), bool))
+    twice.hand_force_N[twice.test_index == 1] = twice.hand_force_N[twice.test_index == 0][0]     # test 1 repeats 0
+    assert twice.n_tests == 3 and not once_per_force(twice)

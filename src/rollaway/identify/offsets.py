@@ -35,7 +35,9 @@ def offsets_rival(steps: list[dict], nq):
     * where :func:`~rollaway.identify.partner.own_evidence` left offsets out of a pair because the other effect
       re-formed leaves none for them (:func:`offsets_absorbed`), the pair (:func:`_dropped_pair`);
     * where the verdict is offsets alone, each of the best :data:`LAWS_TRIED` step-1 laws whose re-formed version
-      leaves no per-test offsets either (:func:`_laws_instead`).
+      leaves no per-test offsets either (:func:`_laws_instead`);
+    * where the verdict is one law of the hand force alone and each hand force was tested once facing each way,
+      offsets that fit the tests as well (:func:`_offsets_instead`).
 
     On short tests, each at its own temperature, a temperature law re-formed and per-test offsets write the same
     test levels: a quadratic friction law on 12 s tests at 100 Hz had offsets named beside it, a sigmoid modulus
@@ -54,8 +56,57 @@ def offsets_rival(steps: list[dict], nq):
         if names and all(has_per_test(n) for n in names):
             return rivalry + _laws_instead(data, params, names, verdict, first_cands, nq, rivalry)[
                 :MAX_RIVALS - len(rivalry)]
+        if len(names) == 1 and _of_hand_force(names[0]) and once_per_force(data):
+            return rivalry + _offsets_instead(data, params, verdict, first_cands, inflation, rivalry)
         return rivalry
     return rival
+
+
+LEVEL_WORDS = ("a second test at a tested hand force would: per-test offsets differ from test to test, a law of the "
+               "hand force gives it the same level")
+
+
+def _of_hand_force(name: str) -> bool:
+    """True for an effect whose shape-free form is a function of the hand force (``nonlinear_lining_stiffness``)."""
+    from rollaway.effects import get_effect
+    from rollaway.identify.shape import shape_hook
+    hook = shape_hook(get_effect(name))
+    return hook is not None and hook[1] == "hand_force_N"
+
+
+def once_per_force(data) -> bool:
+    """True when every test of *data* has a hand force of its own in its direction (no force tested twice facing
+    one way): a law of the hand force then sets each test's level as a per-test offset does."""
+    tests = {(round(float(f), 1), int(s)) for f, s in zip(data.hand_force_N, data.sign)}
+    return len(tests) == data.n_tests and data.n_tests > 1
+
+
+def _offsets_instead(data, params, verdict, first_cands, inflation: float, rivalry: list[dict]) -> list[dict]:
+    """Beside a verdict of one law of the hand force on a bench that tested each force once facing each way: per-test
+    offsets alone (the step-1 fit, or one fitted here) where their noise-weighted torque sum of squares is within
+    :data:`~rollaway.identify.ambiguity.INDISTINGUISHABLE_BIC` (× *inflation*) of the verdict's — they write the same
+    test levels, with a value per test the law spares (BIC's penalty prefers the law; that is parsimony, not a
+    measurement).  Zero offsets on 1-Hz tests facing one way, one test per force, were named
+    ``nonlinear_lining_stiffness`` alone.  Named, not drawn in the bands (offsets are the bench's)."""
+    from rollaway.identify.ambiguity import INDISTINGUISHABLE_BIC
+    from rollaway.identify.workers import fit_all
+    name = "torque_zero_offset"
+    if any(name in a["effects"] for a in rivalry):
+        return []
+    fit = next((c.fit for c in first_cands if c.effect == name and c.fit.jacobian is not None), None)
+    if fit is None:
+        fit = fit_all(data, [([name], params, dict(start=verdict.values))])[0]
+    gap = (fit.rss_torque_weighted - verdict.rss_torque_weighted) / max(inflation, 1.0)
+    if fit.jacobian is None or gap > INDISTINGUISHABLE_BIC:
+        return []
+    law = verdict.model.effects[0].name
+    return [{"kind": "rival", "form": "exact", "effects": [name], "fit": fit, "bands": False,
+             "delta_bic": float(fit.bic - verdict.bic), "heldout_elpd": None, "heldout_se": None,
+             "why": (f"each hand force was tested once facing each way: per-test offsets set the tests' levels as "
+                     f"{law} does (noise-weighted torque sum of squares {gap:+.1f} against it; BIC "
+                     f"{fit.bic - verdict.bic:+.1f} counts the value per test the law spares, and the held-out score "
+                     f"fits each held-out test's own offset and cannot judge them)"),
+             "tell_apart": {"test": None, "words": LEVEL_WORDS}}]
 
 
 def _dropped_pair(step: dict, names: list[str], verdict, rivalry: list[dict]) -> list[dict]:
