@@ -219,8 +219,8 @@ def _calibrate(data, effects, params, free, start, model, per_test, statistics, 
         values[INITIAL_TEMP] = None
     if 2 * len(data) < len(names):              # fewer residuals than globals: MINPACK cannot start
         from rollaway.identify.enough import require
-        require(data, len(names) + (data.n_tests if per_test else 0), "fit " + (" + ".join(e.name for e in model.effects)
-                                                                                 or "the drum"))
+        what = " + ".join(e.name for e in model.effects) or "the drum"
+        require(data, len(names) + (data.n_tests if per_test else 0), f"fit {what}")
     w_t, w_q = _noise_weights(data, model, values)
     prob = Problem(model, data, names, families, values, w_t, w_q)
     bar = None
