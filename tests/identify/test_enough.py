@@ -53,3 +53,14 @@ def test_a_fit_ladder_never_judges_an_effect_on_samples_it_interpolates(tmp_path
     with pytest.raises(UserError, match="too few to judge friction_temperature"):
         fit(longer, ["friction_temperature"])
     assert np.isfinite(fit(longer, []).final.bic)
+
+
+def test_a_fit_with_more_globals_than_residuals_is_a_user_error_not_a_minpack_traceback(tmp_path):
+    from rollaway.bench.measurements import load_measurements
+    from rollaway.identify.calibrate import calibrate
+    from rollaway.identify.model import DrumPlan
+    from rollaway.model.drum_parameters import BASELINE_FREE
+    from rollaway.model.parameters import paper
+    data = load_measurements(_one_short_test(tmp_path), 1.0)                       # 2 rows: 4 residuals
+    with pytest.raises(UserError, match="too few to fit the drum"):
+        calibrate(data, (), DrumPlan(paper(), tuple(BASELINE_FREE)))              # 6 globals
