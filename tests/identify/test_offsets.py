@@ -108,3 +108,23 @@ def test_once_per_force_is_false_where_a_force_is_tested_twice_facing_one_way():
     twice = one.subset(np.ones(len(one), bool))
     twice.hand_force_N[twice.test_index == 1] = twice.hand_force_N[twice.test_index == 0][0]     # test 1 repeats 0
     assert twice.n_tests == 3 and not once_per_force(twice)
+
+
+def test_beside_offsets_alone_the_laws_that_fit_the_torque_best_are_tried_whatever_their_bic(tmp_path):
+    """Friction falling linearly and a sigmoid modulus drop, 12.5-s tests at 100 Hz on another drum, read as the CLI
+    reads the log (1-s windows): per-test offsets take every test's level and are the verdict.  The friction and
+    modulus laws' own fits traded the temperature channel for the torque (BIC +330 and +400 above the drum alone),
+    so ranked by BIC they were never re-formed and nothing was named beside the offsets.  Ranked by their torque
+    fit, both are re-formed, write the tests' levels too, and are named beside the verdict."""
+    from rollaway.bench.measurements import load_measurements
+    from tests.identify.bench_generator import MORE_DRUMS
+    drum = {**OTHER_DRUMS, **MORE_DRUMS}["radius_100mm"]
+    path = tmp_path / "two_laws.csv"
+    generate(["friction_linear", "modulus_sigmoid"], sampling="100Hz", seed=7347, duration_s=12.5, n_forces=4,
+             drum=drum, mu=0.3625, h=27.28, ambient_drift_C=3.16).to_csv(path)
+    d = diagnose(load_measurements(path, None))
+    assert d.verdict == "torque_zero_offset"
+    named = {e for a in d.alternatives for e in a["effects"]}
+    assert {"friction_temperature", "modulus_temperature"} <= named
+    shortfall = {c.effect: c for c in d.candidates}
+    assert shortfall["friction_temperature"].delta_bic > 10 and shortfall["modulus_temperature"].delta_bic > 10

@@ -128,15 +128,17 @@ def _dropped_pair(step: dict, names: list[str], verdict, rivalry: list[dict]) ->
 
 
 def _laws_instead(data, params, names: list[str], verdict, first_cands, nq, rivalry: list[dict]) -> list[dict]:
-    """Beside a verdict of offsets alone: the best :data:`LAWS_TRIED` step-1 candidates without per-test values,
-    each re-formed (its hook as a linear spline, one fit each, side by side), that leave no per-test offsets — a
-    law that writes the tests' levels as the offsets do, with no value per test.  In the bands with the others
-    named beside a verdict."""
+    """Beside a verdict of offsets alone: the :data:`LAWS_TRIED` step-1 candidates without per-test values that fit
+    the torque best (its noise-weighted sum of squares: the offsets take up torque levels; BIC would rank last a law
+    whose fit traded the temperature channel for the torque, :func:`~rollaway.identify.selection.nested_shortfall`
+    — a friction and a modulus law beside true friction + sigmoid modulus on 12-s tests), each re-formed (its hook
+    as a linear spline, one fit each, side by side), that leave no per-test offsets — a law that writes the tests'
+    levels as the offsets do, with no value per test.  In the bands with the others named beside a verdict."""
     from rollaway.identify.shape import reform_job
     from rollaway.identify.selection import has_per_test
     from rollaway.identify.workers import fit_all
     named = {e for a in rivalry for e in a["effects"]}
-    laws = [c for c in sorted(first_cands, key=lambda c: c.fit.bic)
+    laws = [c for c in sorted(first_cands, key=lambda c: c.fit.rss_torque_weighted)
             if not has_per_test(c.effect) and c.effect not in named and c.fit.jacobian is not None][:LAWS_TRIED]
     jobs = [(c, reform_job(params, c.effect, c.fit)) for c in laws]
     jobs = [(c, j) for c, j in jobs if j is not None]
