@@ -124,3 +124,33 @@ def test_over_two_effect_campaigns_a_wrong_loss_is_never_named_without_the_true_
             wrong.append(i)
         doubted += truth in named and twin in flagged
     assert n >= 150 and not wrong and doubted <= n / 10, (n, wrong, doubted)
+
+
+def test_a_modulus_law_that_hid_a_friction_fade_carries_the_pair_into_the_bands_without_naming_it():
+    """Two-effect band campaign 123: a straight modulus law beside a friction that fades above 110 °C, both
+    directions, another drum.  Named `modulus_temperature` (partial); with its own spline alone in the bands the
+    band at 450 N from 200 °C, [0.924, 0.978], lay wholly below the truth's least margin 1.011 (confident and
+    wrong).  The law beside the friction law re-formed fits 13 BIC better than the law re-formed and predicts held-out
+    tests better: it now carries most of the bands' weight, and the band holds the truth.  It is not named (a
+    twin's spline also stands for a cable relaxation elsewhere)."""
+    from tests.uncertainty.band_questions import answers
+    effects, drum, mu, h, one, data, rng = two_effect_data(123)
+    d = diagnose(data)
+    assert d.verdict == "modulus_temperature" and not d.alternatives
+    alts = d.refined.fit_info["alternatives"]
+    w = sum(wi for wi, f in alts if len(f.effects) == 2 and f.effects[0] == "modulus_temperature"
+            and f.effects[1].startswith("friction_temperature"))
+    assert w > 0.5, [(wi, f.effects) for wi, f in alts]
+    rows = {r["question"]: r for r in answers(d.model, 123, effects, drum, mu, h, one, rng, 300)}
+    assert rows["force_high"]["covered"] and rows["hotter"]["covered"], rows
+
+
+@pytest.mark.parametrize("misfit", [False, "partial"])
+def test_no_twin_pair_where_the_form_fits_or_the_verdict_is_not_one_law(misfit):
+    """An exact form (*misfit* False), a verdict of another kind or of two effects, or no spline of its own: no fit."""
+    from rollaway.identify.twins import partial_twin_pair
+    creep = SimpleNamespace(effects=["lining_creep"], jacobian=[[1.0]], values={})
+    law = SimpleNamespace(effects=["friction_temperature"], jacobian=[[1.0]], values={})
+    two = SimpleNamespace(effects=["friction_temperature", "lining_creep"], jacobian=[[1.0]], values={})
+    for verdict in (creep, two, law):
+        assert partial_twin_pair(None, None, verdict, [], misfit) == []

@@ -49,7 +49,7 @@ from rollaway.identify.shape import (candidate_shapes, channel_alternatives, cha
                                      other_form_rivals, shape_rivals)
 from rollaway.identify.workers import fit_all
 from rollaway.identify.separating_test import tell_apart
-from rollaway.identify.twins import TWINS, law_twin_rival, loss_twin_rival, twin_rival
+from rollaway.identify.twins import TWINS, law_twin_rival, loss_twin_rival, partial_twin_pair, twin_rival
 from rollaway.identify.selection import (BIC_THRESHOLD, SCREEN_ITERATIONS, Candidate, cv_score, eliminate, exchange,
                                          folds, forward_step, has_per_test, per_test_signature, structure)
 from rollaway.uncertainty.bands import validity
@@ -318,7 +318,7 @@ def diagnose(data: Measurements, params=None, effects=None, *, noise_torque_Nm: 
     ev += alternative_words(verdict, rivalry + weak, [e["effect"] for e in selected])
     limits = detection_limits(data, base) if verdict == "none" and not remaining else []
     ev += [limits_words(limits)] if limits else []
-    forms += channels
+    forms += channels + partial_twin_pair(data, drum.plan, refined, forms, misfit, infl)   # in the bands
     pool = [base] + [c.fit for c in first_cands]
     kept = [a["fit"] for a in rivalry + weak if a.get("bands", True)]   # named beside the verdict: in the bands
     ties = [a["fit"] for a in rivalry if a.get("kind") == "rival" and not a.get("channel") and a.get("bands", True)]

@@ -158,6 +158,44 @@ def law_twin_rival(data, params, verdict, candidates, tested: dict, noise_torque
     return _named_first(rivalry, swap, fit, (dbic, elpd, se), why, verdict, tested, noise_torque_Nm)
 
 
+def partial_twin_pair(data, params, verdict, forms: list, misfit, inflation: float = 1.0) -> list:
+    """``[fit]`` of the law in its catalogue form beside its twin re-formed (a linear spline along the same covariate,
+    the knots of the verdict's own spline), for the bands, where the verdict *verdict* is one friction or modulus law
+    whose catalogue form is not the data's (*misfit*: the diagnosis' flag; *forms*: the verdict's shape-free forms,
+    :func:`rollaway.identify.shape.form_rivals`) and that pair lowers BIC against the verdict's own spline by
+    :data:`~rollaway.identify.selection.BIC_THRESHOLD` or more (divided by the residual variance *inflation*) and
+    predicts held-out tests better (:func:`rollaway.identify.beyond.heldout_preference`); else ``[]``.
+
+    One law's spline writes a lining modulus and a friction that both change with temperature as one quantity,
+    which the two directions do not follow: a straight modulus law beside a friction fading above 110 °C was named
+    `modulus_temperature` (partial), its spline 13.4 BIC behind the pair, and its bands ran 3 % below the truth at
+    450 N and from 280 °C (two-effect band campaign 123).  The pair competes in the bands by its held-out score; it
+    is not named: over the held-out names campaigns, a twin's spline beside the law stood as often for a loss that
+    goes on as the drum cools (a cable relaxation: two-effect campaigns 25, 165 and 348 of
+    ``tests/identify/heldout_names.py --two``) or for nothing (one-effect short logs 43 and 85) as for the twin."""
+    from rollaway.effects import get_effect
+    from rollaway.effects.shape_free import is_shape_free
+    from rollaway.identify.beyond import heldout_preference
+    from rollaway.identify.calibrate import calibrate
+    from rollaway.identify.selection import BIC_THRESHOLD, REFORM_ITERATIONS
+    from rollaway.identify.shape import PREDICTING_SEGMENT_SAMPLES, covariate_of, flexible_effect, shape_hook
+    effects = list(getattr(verdict, "effects", ()))
+    own = next((f for f in forms if len(f.effects) == 1 and is_shape_free(f.model.effects[0])
+                and f.jacobian is not None), None)
+    if not misfit or len(effects) != 1 or effects[0] not in TWINS or own is None:
+        return []
+    hook = shape_hook(get_effect(TWINS[effects[0]]))
+    flex = None if hook is None else flexible_effect(get_effect(TWINS[effects[0]]), covariate_of(verdict, hook[1]),
+                                                     PREDICTING_SEGMENT_SAMPLES)
+    if flex is None:
+        return []
+    pair = calibrate(data, [verdict.model.effects[0], flex], params, start=verdict.values,
+                     max_iterations=REFORM_ITERATIONS)
+    if pair.jacobian is None or (pair.bic - own.bic) / max(inflation, 1.0) > -BIC_THRESHOLD:
+        return []
+    return [pair] if heldout_preference(data, pair, own)["passes"] else []
+
+
 def _named_first(rivalry: list, effects: list, fit, evidence: tuple, why: str, verdict, tested: dict,
                  noise_torque_Nm: float) -> list[dict]:
     """*rivalry* with the rival set *effects* (its *fit*, *evidence* = (ΔBIC, held-out difference, its standard
@@ -192,4 +230,4 @@ def _compared(data, params, mine: list, mine_start: dict, theirs: list, theirs_s
     return b, dbic, elpd, se, margin
 
 
-__all__ = ["ARM", "LOSSES", "TWINS", "law_twin_rival", "loss_twin_rival", "twin_rival"]
+__all__ = ["ARM", "LOSSES", "TWINS", "law_twin_rival", "loss_twin_rival", "partial_twin_pair", "twin_rival"]
