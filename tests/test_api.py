@@ -85,6 +85,20 @@ def test_load_measurements_refuses_a_mapping_the_loader_does_not_take():
         rollaway.load_measurements(BENCH, not_a_column="x")
 
 
+def test_load_measurements_reduces_a_dense_log_as_the_command_line_does(tmp_path):
+    """The same file gives the same rows in Python as through ``rollaway diagnose``: a 100 Hz log of 12-s tests is
+    reduced to 1-s window means by default; ``window_s=0`` keeps every sample."""
+    from rollaway.cli.identify_common import load_data
+    from rollaway.identify.synth import synth
+    path = tmp_path / "dense.csv"
+    synth([], seed=4, dt_s=0.01, duration_s=12.0, hand_forces_N=(250.0, 320.0)).to_csv(path)
+    data = rollaway.load_measurements(path)
+    cli = load_data(path, None, None, None)
+    assert data.reduction.window_s == 1.0 and len(data) == len(cli) < 4 * 1201 / 50
+    np.testing.assert_allclose(data.torque_Nm, cli.torque_Nm)
+    assert len(rollaway.load_measurements(path, window_s=0)) == 4 * 1201
+
+
 def test_sweep_is_callable_and_writes_its_table(tmp_path):
     from rollaway.api import build_scenario
     from rollaway.sweep import grid_spec

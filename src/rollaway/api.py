@@ -215,7 +215,7 @@ def check(targets=(), *, model=None, analytic: bool = False, uncertainty: int | 
     return run_check(targets, model, analytic=analytic, uncertainty=uncertainty)
 
 
-def load_measurements(path, **mapping):
+def load_measurements(path, window_s: float | None = None, **mapping):
     """Read and validate bench measurements (CSV) for :func:`diagnose` and :func:`fit`.
 
     Parameters
@@ -223,6 +223,10 @@ def load_measurements(path, **mapping):
     path : str or path-like
         CSV file with columns ``test_id``, ``direction``, ``hand_force_N`` [N], ``time_s`` [s],
         ``drum_temp_C`` [°C], ``torque_Nm`` [N·m] (per drum), optionally ``ambient_C`` [°C].
+    window_s : float or None
+        None (default): a dense log is reduced to window means as the command line does (the automatic window,
+        :mod:`rollaway.bench.reduction`), so the same file gives the same answer either way; 0: every sample a
+        row; a whole number of seconds: that window.
     **mapping
         Passed to the loader (e.g. column names of your file) when this version's loader
         accepts them; otherwise an error says so.
@@ -244,7 +248,7 @@ def load_measurements(path, **mapping):
         if unknown and not any(p.kind is inspect.Parameter.VAR_KEYWORD for p in accepted.values()):
             raise UserError(f"load_measurements: this loader takes no {', '.join(unknown)}; it reads the columns "
                             f"test_id, direction, hand_force_N, time_s, drum_temp_C, torque_Nm (and ambient_C)")
-    return load(path, **mapping)
+    return load(path, window_s=window_s, **mapping)
 
 
 def _data(data):
