@@ -2,7 +2,8 @@
 
 A friction law and a lining-modulus law on tests facing one way, compared with the shoe arm ratio free
 (:func:`twin_rival`); the same two laws beside another effect, each re-formed (:func:`law_twin_rival`); a lining
-creep and a cable relaxation beside a law whose form is not the catalogue's (:func:`loss_twin_rival`).
+creep and a cable relaxation beside a law whose form is not the catalogue's (:func:`loss_twin_rival`); a law whose
+form is not the data's beside its twin re-formed, for the bands (:func:`partial_twin_pair`).
 
 μ and E_l enter the torque together (eq. 17b: μ_d·r_d·A·E), and differ only through the self-energising factor
 k(μ, s) = l_f/(l_f − s·μ·l_fr) of eqs. (18)–(21), which a friction law changes with temperature and a modulus
