@@ -318,7 +318,7 @@ def diagnose(data: Measurements, params=None, effects=None, *, noise_torque_Nm: 
     ev += alternative_words(verdict, rivalry + weak, [e["effect"] for e in selected])
     limits = detection_limits(data, base) if verdict == "none" and not remaining else []
     ev += [limits_words(limits)] if limits else []
-    forms += channels + partial_twin_pair(data, drum.plan, refined, forms, misfit, infl)   # in the bands
+    forms += channels + partial_twin_pair(data, drum.plan, refined, forms, selected and misfit, infl)   # bands
     pool = [base] + [c.fit for c in first_cands]
     kept = [a["fit"] for a in rivalry + weak if a.get("bands", True)]   # named beside the verdict: in the bands
     ties = [a["fit"] for a in rivalry if a.get("kind") == "rival" and not a.get("channel") and a.get("bands", True)]

@@ -162,8 +162,9 @@ def law_twin_rival(data, params, verdict, candidates, tested: dict, noise_torque
 def partial_twin_pair(data, params, verdict, forms: list, misfit, inflation: float = 1.0) -> list:
     """``[fit]`` of the law in its catalogue form beside its twin re-formed (a linear spline along the same covariate,
     the knots of the verdict's own spline), for the bands, where the verdict *verdict* is one friction or modulus law
-    whose catalogue form is not the data's (*misfit*: the diagnosis' flag; *forms*: the verdict's shape-free forms,
-    :func:`rollaway.identify.shape.form_rivals`) and that pair lowers BIC against the verdict's own spline by
+    whose catalogue form is not the data's (*misfit*: the diagnosis' flag, false where nothing is named; *forms*: the
+    shape-free forms for the bands, among them the verdict's own, :func:`rollaway.identify.shape.form_rivals`) and
+    that pair lowers BIC against the verdict's own spline by
     :data:`~rollaway.identify.selection.BIC_THRESHOLD` or more (divided by the residual variance *inflation*) and
     predicts held-out tests better (:func:`rollaway.identify.beyond.heldout_preference`); else ``[]``.
 
@@ -181,9 +182,9 @@ def partial_twin_pair(data, params, verdict, forms: list, misfit, inflation: flo
     from rollaway.identify.selection import BIC_THRESHOLD, REFORM_ITERATIONS
     from rollaway.identify.shape import PREDICTING_SEGMENT_SAMPLES, covariate_of, flexible_effect, shape_hook
     effects = list(getattr(verdict, "effects", ()))
-    own = next((f for f in forms if len(f.effects) == 1 and is_shape_free(f.model.effects[0])
-                and f.jacobian is not None), None)
-    if not misfit or len(effects) != 1 or effects[0] not in TWINS or own is None:
+    own = next((f for f in forms if len(f.effects) == 1 and is_shape_free(f.model.effects[0]) and f.jacobian is not None
+                and getattr(f.model.effects[0], "base", None) == effects[0]), None) if len(effects) == 1 else None
+    if not misfit or own is None or effects[0] not in TWINS:
         return []
     hook = shape_hook(get_effect(TWINS[effects[0]]))
     flex = None if hook is None else flexible_effect(get_effect(TWINS[effects[0]]), covariate_of(verdict, hook[1]),
