@@ -175,16 +175,18 @@ def partial_twin_pair(data, params, verdict, forms: list, misfit, inflation: flo
     is not named: over the held-out names campaigns, a twin's spline beside the law stood as often for a loss that
     goes on as the drum cools (a cable relaxation: two-effect campaigns 25, 165 and 348 of
     ``tests/identify/heldout_names.py --two``) or for nothing (one-effect short logs 43 and 85) as for the twin."""
+    effects = list(getattr(verdict, "effects", ()))
+    if not misfit or len(effects) != 1 or effects[0] not in TWINS:
+        return []
     from rollaway.effects import get_effect
     from rollaway.effects.shape_free import is_shape_free
     from rollaway.identify.beyond import heldout_preference
     from rollaway.identify.calibrate import calibrate
     from rollaway.identify.selection import BIC_THRESHOLD, REFORM_ITERATIONS
     from rollaway.identify.shape import PREDICTING_SEGMENT_SAMPLES, covariate_of, flexible_effect, shape_hook
-    effects = list(getattr(verdict, "effects", ()))
     own = next((f for f in forms if len(f.effects) == 1 and is_shape_free(f.model.effects[0]) and f.jacobian is not None
-                and getattr(f.model.effects[0], "base", None) == effects[0]), None) if len(effects) == 1 else None
-    if not misfit or own is None or effects[0] not in TWINS:
+                and getattr(f.model.effects[0], "base", None) == effects[0]), None)
+    if own is None:
         return []
     hook = shape_hook(get_effect(TWINS[effects[0]]))
     flex = None if hook is None else flexible_effect(get_effect(TWINS[effects[0]]), covariate_of(verdict, hook[1]),
