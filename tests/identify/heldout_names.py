@@ -89,14 +89,18 @@ def judge(hidden, d) -> dict:
 
 def judge_two(hidden: list, d) -> dict:
     """Of one diagnosis of two hidden effects: right (the verdict's set is the pair's, or a flagged alternative's
-    is), a false name (an effect named that is not hidden) and whether an alternative of hidden effects only flags
-    it."""
+    is; an effect the free drum writes as well — a gap is a thicker lining, :data:`EQUIVALENT` — may be left out or
+    named by its equivalent, as :func:`judge` lets it be for one), a false name (an effect named that is not hidden)
+    and whether an alternative of hidden effects only flags it."""
     true = set().union(*({EFFECTS[h][1]} | EQUIVALENT.get(h, set()) for h in hidden)) - {None}
-    pair = {EFFECTS[h][1] for h in hidden} - {None}
+    need = {EFFECTS[h][1] for h in hidden if "none" not in EQUIVALENT.get(h, ())} - {None}
     named = {e["effect"] for e in d.effects}
     alts = [set(a["effects"]) for a in getattr(d, "alternatives", [])]
     false = sorted(named - true)
-    return {"right": named == pair, "right_or_alternative": named == pair or any(a == pair for a in alts),
+
+    def holds(effects: set) -> bool:
+        return need <= effects <= true and len(effects) <= len(hidden)
+    return {"right": holds(named), "right_or_alternative": holds(named) or any(holds(a) for a in alts),
             "false": false, "false_unflagged": bool(false) and not any(a and a <= true for a in alts),
             "ambiguous": bool(alts), "structure": bool(d.remaining_structure), "verdict": d.verdict,
             "effects": sorted(named), "alternatives": [sorted(a) for a in alts]}
