@@ -1,13 +1,15 @@
 """Road-margin bands over many held-out chunks, run in parallel, kept per chunk, compared between two trees.
 
     PYTHONPATH=src python benchmarks/band_suite.py run --tag new                 # the default chunks, 2 workers
+    PYTHONPATH=src python benchmarks/band_suite.py run --tag new untuned         # campaigns never tuned on
     PYTHONPATH=src python benchmarks/band_suite.py run --tag new two:0:36 1Hz:0:12
     PYTHONPATH=src python benchmarks/band_suite.py compare base new              # pooled, per kind, moved bands
 
 A chunk ``kind:start:n`` is *n* campaigns of :mod:`tests.uncertainty.band_questions` from *start*; *kind* is a
 sampling (``5min``, ``1min``, ``15min``, ``irregular``, ``1Hz``, ``10Hz``: :func:`campaign_data`), ``rot`` + a
 sampling (:func:`rotated_campaign_data`), ``two`` (:func:`two_effect_data`) or ``short`` (tests of 12–1200 s:
-:func:`short_campaign_data`).  Each chunk's rows are written to
+:func:`short_campaign_data`).  ``untuned`` runs :data:`UNTUNED` instead: 24 chunks of campaigns that no change to
+the bands was measured on before it was made (1 670 questions).  Each chunk's rows are written to
 ``OUT/TAG/kind_start_n.json`` as soon as it ends, and a chunk already written is not run again, so an interrupted
 suite keeps what it did and goes on from there.
 """
@@ -30,6 +32,10 @@ DEFAULT = ([f"5min:{s}:24" for s in range(0, 144, 24)] + [f"1min:{s}:24" for s i
            + [f"rot5min:{s}:24" for s in range(0, 96, 24)] + [f"rot1min:{s}:24" for s in range(0, 48, 24)]
            + [f"rot15min:{s}:24" for s in range(0, 72, 24)] + [f"two:{s}:24" for s in range(0, 288, 24)]
            + ["1Hz:0:12", "1Hz:12:12", "10Hz:0:12"] + [f"short:{s}:12" for s in range(0, 48, 12)])
+UNTUNED = (["5min:2000:24", "5min:2100:24", "1min:3000:24", "1min:3100:24", "15min:4000:24", "15min:4100:24",
+            "irregular:900:24", "irregular:1000:24", "rot15min:500:24", "rot15min:700:24", "rot5min:600:24",
+            "rot5min:800:24", "rot1min:900:24", "short:400:12", "short:500:12"]
+           + [f"two:{s}:24" for s in (1200, 1224, 1248, 1300, 1324, 1348, 1372, 1396, 1420)])
 
 
 def run_chunk(spec: str, path: str) -> tuple[str, float, int]:
@@ -125,7 +131,7 @@ def main(argv=None):
     c.add_argument("--out", default=os.environ.get("BAND_SUITE_OUT", "/tmp/band_suite"))
     a = ap.parse_args(argv)
     if a.cmd == "run":
-        run(a.specs or DEFAULT, Path(a.out) / a.tag, a.jobs)
+        run(UNTUNED if a.specs == ["untuned"] else a.specs or DEFAULT, Path(a.out) / a.tag, a.jobs)
         compare(Path(a.out), [a.tag])
     else:
         compare(Path(a.out), a.tags)
