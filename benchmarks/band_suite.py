@@ -3,7 +3,7 @@
     PYTHONPATH=src python benchmarks/band_suite.py run --tag new                 # the default chunks, 2 workers
     PYTHONPATH=src python benchmarks/band_suite.py run --tag new untuned         # campaigns never tuned on
     PYTHONPATH=src python benchmarks/band_suite.py run --tag new two:0:36 1Hz:0:12
-    PYTHONPATH=src python benchmarks/band_suite.py compare base new              # pooled, per kind, moved bands
+    PYTHONPATH=src python benchmarks/band_suite.py compare base new              # pooled, per sampling, question and hidden effect
 
 A chunk ``kind:start:n`` is *n* campaigns of :mod:`tests.uncertainty.band_questions` from *start*; *kind* is a
 sampling (``5min``, ``1min``, ``15min``, ``irregular``, ``1Hz``, ``10Hz``: :func:`campaign_data`), ``rot`` + a
@@ -101,9 +101,12 @@ def compare(root: Path, tags: list[str]) -> None:
         groups[kind] = lambda k, kind=kind: k[0] == kind
     for q in sorted({k[2] for k in keys}):
         groups[q] = lambda k, q=q: k[2] == q
+    hidden = lambda k: (sets[0][k]["hidden"] or "none").split("+")      # noqa: E731  (a pair counts for each)
+    for e in sorted({e for k in keys for e in hidden(k)}):
+        groups[e] = lambda k, e=e: e in hidden(k)
     for name, sel in groups.items():
         ks = [k for k in keys if sel(k)]
-        print(f"{name:>12}: " + " | ".join(summarise([s[k] for k in ks]) for s in sets))
+        print(f"{name:>19}: " + " | ".join(summarise([s[k] for k in ks]) for s in sets))
     for t, s in zip(tags, sets):
         for k in sorted(k for k in keys if _cw(s[k])):
             r = s[k]
