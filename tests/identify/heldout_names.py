@@ -1,7 +1,9 @@
 """Held-out campaigns for the names ``diagnose`` gives: one hidden effect of every kind (the catalogue's
 form, other forms, none), other drums, random μ_d, h and tested hand forces, 1- or 5-min sampling,
 one direction in every third campaign.  Counts whether the truth is the verdict or one of its flagged
-alternatives, partner effects (a second effect named where one is hidden), structure and time.
+alternatives, partner effects (a second effect named where one is hidden), structure and time.  Each log is read as
+the command line reads its file: a dense one reduced to window means (:mod:`rollaway.bench.reduction`; the short
+logs), a sparse one as it is.
 
     PYTHONPATH=src python -m tests.identify.heldout_names --sets 60
     PYTHONPATH=src python -m tests.identify.heldout_names --sets 72 --rotated    # every kind in every setting
@@ -107,6 +109,7 @@ def judge_two(hidden: list, d) -> dict:
 
 
 def run(sets: int, start: int = 0, rotated: bool = False, two: bool = False, short: bool = False) -> list[dict]:
+    from rollaway.bench.reduction import reduce_measurements
     from rollaway.identify.diagnose import diagnose
     from tests.uncertainty.band_questions import two_effect_data
     rows = []
@@ -116,6 +119,7 @@ def run(sets: int, start: int = 0, rotated: bool = False, two: bool = False, sho
             hidden, data = [str(e) for e in got[0]], got[5]
         else:
             hidden, data = (short_campaign if short else rotated_campaign if rotated else campaign)(i)
+        data = reduce_measurements(data)        # as `rollaway diagnose FILE` and load_measurements read it
         t = time.perf_counter()
         d = diagnose(data)
         rows.append({"i": i, "hidden": hidden, "rows": len(data), "seconds": time.perf_counter() - t,

@@ -328,7 +328,7 @@ def jacobian_at(fit: FitResult, names: list[str]) -> np.ndarray:
     from rollaway.identify.model import DrumPlan
     m = fit.model
     brake = [n for n in names if "." not in n]
-    plan = DrumPlan(m.params, tuple(set(m.free) | set(brake)))
+    plan = DrumPlan(m.params, tuple(dict.fromkeys([*m.free, *brake])))     # in order: a set's order is the hash seed's
     model = BenchModel(plan, m.effects)
     vals = {**model.neutral_values(), **fit.values}
     families = [f for f in model.per_test_parameters() if f in fit.values]

@@ -2,8 +2,12 @@
 
 A diagnosis screens many effect sets that do not depend on each other (each swap of a two-effect verdict, each
 candidate of a forward step).  :func:`fit_all` runs such a list of :func:`~rollaway.identify.calibrate.calibrate`
-calls on all cores: this process and one forked helper per further core take the next fit from one shared counter
-until none is left.  A forked helper inherits the data and every loaded effect (a plugin's too) and the calls
+calls on all cores: this process and one forked helper per further core each fit a fixed share of them (of n
+processes, the k-th fits calls k, k + n, k + 2n, …).  A share, not the next call from a shared counter: the fits a
+process makes inside its calls stay in its memo (:mod:`rollaway.identify.memo`; a helper's dies with it) and later
+calls can find them there, so which process fitted which call must not depend on timing — a shared counter let a
+short high-rate log's verdict change from one run to the next (a partner named in 9 of 15 runs, not in the other
+6).  A forked helper inherits the data and every loaded effect (a plugin's too) and the calls
 themselves without pickling them, and sends back each fit without its data (the caller's object is put back)
 through a pipe this process drains as it goes.  This process works on the batch too, with its own caches warm, and
 a batch costs one fork per further core and nothing else (a process pool costs its start, its queues and one more
@@ -20,7 +24,6 @@ this process, which raises any error of their own.
 """
 from __future__ import annotations
 
-import mmap
 import multiprocessing as mp
 import os
 import pickle
@@ -85,13 +88,9 @@ def _run(data, calls: list[tuple]) -> list:
     if (n < 2 or _fork is None or mp.current_process().daemon
             or threading.current_thread() is not threading.main_thread()):
         return [fn(data, *args, **kwargs) for fn, args, kwargs in calls]
-    try:                         # the shared counter (anonymous shared memory and a semaphore)
-        counter, lock = mmap.mmap(-1, 8), mp.get_context("fork").Lock()
-    except (OSError, ValueError):        # none to be had here (no /dev/shm): one after another
-        return [fn(data, *args, **kwargs) for fn, args, kwargs in calls]
     _CALLS = (data, calls)
     try:
-        out = _shared(data, calls, n, counter, lock)
+        out = _shared(data, calls, n)
     finally:
         _CALLS = (None, [])
     for i, fit in enumerate(out):
@@ -103,18 +102,11 @@ def _run(data, calls: list[tuple]) -> list:
     return out
 
 
-def _shared(data, calls: list[tuple], n: int, counter: mmap.mmap, lock) -> list:
-    """The fits of *calls* shared between this process and up to *n* − 1 forked helpers, each taking the next
-    index from *counter* (8 bytes of shared memory, guarded by *lock*); ``None`` where a helper's fit did not
-    come back."""
+def _shared(data, calls: list[tuple], n: int) -> list:
+    """The fits of *calls* shared between this process and up to *n* − 1 forked helpers, the k-th of them fitting
+    calls k, k + n, … (this process the 0-th); ``None`` where a helper's fit did not come back (or a helper could
+    not be forked: :func:`_run` fits those here)."""
     count = len(calls)
-
-    def take() -> int:
-        with lock:
-            i = int.from_bytes(counter[:8], "little")
-            counter[:8] = (i + 1).to_bytes(8, "little")
-        return i
-
     out: list = [None] * count
     helpers, readers, finished = [], [], False
     try:
@@ -127,13 +119,14 @@ def _shared(data, calls: list[tuple], n: int, counter: mmap.mmap, lock) -> list:
                 os.close(w)
                 break
             if pid == 0:         # a helper: fits until none is left, each sent back as it is done; never returns
-                _helper(r, w, take, count, helpers)
+                _helper(r, w, _stride(len(helpers) + 1, n), count, helpers)
             os.close(w)
             helpers.append((pid, r))
         for pid, r in helpers:
             t = threading.Thread(target=_drain, args=(r, out), daemon=True)
             t.start()
             readers.append(t)
+        take = _stride(0, n)
         while (i := take()) < count:
             fn, args, kwargs = calls[i]
             out[i] = fn(data, *args, **kwargs)
@@ -152,6 +145,17 @@ def _shared(data, calls: list[tuple], n: int, counter: mmap.mmap, lock) -> list:
             except ChildProcessError:
                 pass
     return out
+
+
+def _stride(first: int, step: int):
+    """The indices *first*, *first* + *step*, … one by one."""
+    nxt = [first]
+
+    def take() -> int:
+        i = nxt[0]
+        nxt[0] += step
+        return i
+    return take
 
 
 def _helper(r: int, w: int, take, count: int, earlier) -> None:
