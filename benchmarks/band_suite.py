@@ -3,7 +3,7 @@
     PYTHONPATH=src python benchmarks/band_suite.py run --tag new                 # the default chunks, 2 workers
     PYTHONPATH=src python benchmarks/band_suite.py run --tag new untuned         # campaigns never tuned on
     PYTHONPATH=src python benchmarks/band_suite.py run --tag new two:0:36 1Hz:0:12
-    PYTHONPATH=src python benchmarks/band_suite.py compare base new              # pooled, per sampling, question and hidden effect
+    PYTHONPATH=src python benchmarks/band_suite.py compare base new              # pooled, per kind, question, effect
 
 A chunk ``kind:start:n`` is *n* campaigns of :mod:`tests.uncertainty.band_questions` from *start*; *kind* is a
 sampling (``5min``, ``1min``, ``15min``, ``irregular``, ``1Hz``, ``10Hz``: :func:`campaign_data`), ``rot`` + a
